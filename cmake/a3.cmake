@@ -1,0 +1,53 @@
+# Helpers shared by every folder's CMakeLists.txt.
+
+# a3_library(NAME SOURCES ... DEPS ...): a static library whose headers are included
+# from the repository root.
+function(a3_library name)
+  cmake_parse_arguments(A "" "" "SOURCES;DEPS" ${ARGN})
+  add_library(${name} STATIC ${A_SOURCES})
+  target_include_directories(${name} PUBLIC ${CMAKE_SOURCE_DIR} ${A3_GENERATED_DIR})
+  target_link_libraries(${name} PUBLIC ${A_DEPS})
+  set_target_properties(${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+endfunction()
+
+# a3_gtest(NAME SOURCES ... DEPS ... [LABELS ...] [TIMEOUT s]): a GoogleTest program,
+# each test discovered by CTest. Tests find ../shared through A3_SHARED_DIR.
+function(a3_gtest name)
+  cmake_parse_arguments(A "" "TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
+  if(NOT A_TIMEOUT)
+    set(A_TIMEOUT 300)
+  endif()
+  add_executable(${name} ${A_SOURCES})
+  set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
+  target_include_directories(${name} PRIVATE ${CMAKE_SOURCE_DIR} ${A3_GENERATED_DIR})
+  target_compile_definitions(${name} PRIVATE
+    A3_SOURCE_DIR="${CMAKE_SOURCE_DIR}" A3_BINARY_DIR="${CMAKE_BINARY_DIR}"
+    A3_SHARED_DIR_DEFAULT="${A3_SHARED_DIR_DEFAULT}")
+  target_link_libraries(${name} PRIVATE ${A_DEPS} GTest::gtest GTest::gtest_main Threads::Threads)
+  gtest_discover_tests(${name} DISCOVERY_MODE PRE_TEST DISCOVERY_TIMEOUT 60
+    PROPERTIES TIMEOUT ${A_TIMEOUT} LABELS "${A_LABELS}")
+endfunction()
+
+# a3_bench(NAME SOURCES ... DEPS ...): a Google Benchmark (or plain) benchmark program.
+function(a3_bench name)
+  cmake_parse_arguments(A "PLAIN" "" "SOURCES;DEPS" ${ARGN})
+  add_executable(${name} ${A_SOURCES})
+  set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/bench)
+  target_include_directories(${name} PRIVATE ${CMAKE_SOURCE_DIR} ${A3_GENERATED_DIR})
+  target_compile_definitions(${name} PRIVATE
+    A3_SOURCE_DIR="${CMAKE_SOURCE_DIR}" A3_SHARED_DIR_DEFAULT="${A3_SHARED_DIR_DEFAULT}")
+  target_link_libraries(${name} PRIVATE ${A_DEPS} Threads::Threads)
+  if(NOT A_PLAIN)
+    target_link_libraries(${name} PRIVATE benchmark::benchmark)
+  endif()
+endfunction()
+
+# a3_add_existing_subdirectories(): add every direct subfolder holding a CMakeLists.txt.
+macro(a3_add_existing_subdirectories)
+  file(GLOB _a3_children LIST_DIRECTORIES true ${CMAKE_CURRENT_SOURCE_DIR}/*)
+  foreach(_a3_child ${_a3_children})
+    if(IS_DIRECTORY ${_a3_child} AND EXISTS ${_a3_child}/CMakeLists.txt)
+      add_subdirectory(${_a3_child})
+    endif()
+  endforeach()
+endmacro()

@@ -1,0 +1,119 @@
+// LCM-backed bus.
+#include "common/lcm_bus.hpp"
+
+#include <poll.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <stdexcept>
+
+namespace a3::common {
+
+std::string resolve_lcm_url(const std::string& requested) {
+  if (!requested.empty()) return requested;
+  if (const char* env = std::getenv("LCM_DEFAULT_URL"); env != nullptr && *env != '\0') {
+    return env;
+  }
+  return kDefaultLcmUrl;
+}
+
+std::string lcm_multicast_hint() {
+  return "LCM's UDP multicast needs multicast looped back on this host. As root run:\n"
+         "  ip link set lo multicast on\n"
+         "  ip route add 239.255.76.67/32 dev lo\n"
+         "or, for a single-process run, set LCM_DEFAULT_URL=memq://";
+}
+
+class LcmBus::Subscriber {
+ public:
+  Subscriber(LcmBus& bus, RawHandler handler) : bus_(bus), handler_(std::move(handler)) {}
+  void on_message(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
+    const int64_t t_us = bus_.recv_clock_ != nullptr ? bus_.recv_clock_->now_us() : rbuf->recv_utime;
+    handler_(channel, static_cast<const uint8_t*>(rbuf->data), rbuf->data_size, t_us);
+  }
+  lcm::Subscription* subscription = nullptr;
+
+ private:
+  LcmBus& bus_;
+  RawHandler handler_;
+};
+
+LcmBus::LcmBus(const std::string& url, const Clock* recv_clock)
+    : url_(resolve_lcm_url(url)), recv_clock_(recv_clock) {
+  lcm_ = std::make_unique<lcm::LCM>(url_);
+  if (!lcm_->good()) {
+    std::string message = "cannot create LCM on '" + url_ + "'";
+    if (url_.rfind("udpm://", 0) == 0) message += ".\n" + lcm_multicast_hint();
+    throw std::runtime_error(message);
+  }
+}
+
+LcmBus::~LcmBus() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (auto& [id, sub] : subscribers_) lcm_->unsubscribe(sub->subscription);
+  subscribers_.clear();
+}
+
+bool LcmBus::publish_raw(const std::string& channel, const uint8_t* data, std::size_t size) {
+  if (lcm_->publish(channel, data, static_cast<unsigned int>(size)) != 0) {
+    ++publish_failures_;
+    log_warn("bus", "LCM publish on " + channel + " failed (" + url_ + ")");
+    return false;
+  }
+  return true;
+}
+
+SubscriptionId LcmBus::subscribe_raw(const std::string& channel, RawHandler handler) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto sub = std::make_unique<Subscriber>(*this, std::move(handler));
+  // LCM channel arguments are regular expressions; quote to match the name exactly.
+  std::string pattern;
+  for (char c : channel) {
+    if (std::string_view(".^$|()[]{}*+?\\").find(c) != std::string_view::npos) pattern += '\\';
+    pattern += c;
+  }
+  sub->subscription = lcm_->subscribe(pattern, &Subscriber::on_message, sub.get());
+  const SubscriptionId id = next_id_++;
+  subscribers_.emplace(id, std::move(sub));
+  return id;
+}
+
+void LcmBus::unsubscribe(SubscriptionId id) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto it = subscribers_.find(id);
+  if (it == subscribers_.end()) return;
+  lcm_->unsubscribe(it->second->subscription);
+  subscribers_.erase(it);
+}
+
+int LcmBus::fileno() { return lcm_->getFileno(); }
+
+int LcmBus::handle_ready() {
+  int handled = 0;
+  while (lcm_->handleTimeout(0) > 0) ++handled;
+  return handled;
+}
+
+bool LcmBus::handle_timeout(int timeout_ms) { return lcm_->handleTimeout(timeout_ms) > 0; }
+
+void LcmBus::check_loopback(int timeout_ms) {
+  const std::string channel = "A3_LOOPBACK_PROBE_" + std::to_string(::getpid()) + "_" +
+                              std::to_string(reinterpret_cast<uintptr_t>(this));
+  bool received = false;
+  const SubscriptionId id =
+      subscribe_raw(channel, [&](const std::string&, const uint8_t*, std::size_t, int64_t) {
+        received = true;
+      });
+  const uint8_t probe = 1;
+  const bool sent = publish_raw(channel, &probe, 1);
+  for (int waited = 0; sent && !received && waited < timeout_ms; waited += 10) {
+    handle_timeout(10);
+  }
+  unsubscribe(id);
+  if (!received) {
+    throw std::runtime_error("LCM on '" + url_ + "' does not deliver its own messages back. " +
+                             lcm_multicast_hint());
+  }
+}
+
+}  // namespace a3::common

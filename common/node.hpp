@@ -1,0 +1,21 @@
+// A rig node: subscribes and schedules its timers when started; everything it does
+// afterwards happens in callbacks run by the executor (PX4's "read inputs, update,
+// publish"). The same node object runs unchanged on either runtime.
+#pragma once
+
+#include <string>
+
+#include "common/bus.hpp"
+#include "common/executor.hpp"
+
+namespace a3::common {
+
+class Node {
+ public:
+  virtual ~Node() = default;
+  virtual std::string name() const = 0;
+  // Subscribe on `bus`, schedule on `executor`. Both outlive the node's activity.
+  virtual void start(Executor& executor, Bus& bus) = 0;
+};
+
+}  // namespace a3::common

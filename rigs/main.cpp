@@ -1,0 +1,36 @@
+// The `a3rig` program: one binary, one subcommand per job (see rigs/cli/).
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <exception>
+#include <iostream>
+
+#include "rigs/cli/command_registry.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "a3rig — co-simulation rig that evaluates LLM agents flying UAV missions over "
+      "emulated 6G links, and scores episodes with the α³-Bench metric."};
+  app.set_version_flag("--version", std::string("a3rig ") + A3RIG_VERSION);
+  app.require_subcommand(1);
+  app.fallthrough(false);
+  CLI::App* node = app.add_subcommand(
+      "node", "Run one rig node on its own (real time, talking LCM / CAN)");
+  node->require_subcommand(1);
+
+  auto& commands = a3::rigs::command_registry();
+  std::sort(commands.begin(), commands.end(),
+            [](const auto& a, const auto& b) { return a.sort_key < b.sort_key; });
+  for (const auto& command : commands) command.add_to(app);
+  if (node->get_subcommands({}).empty()) app.remove_subcommand(node);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::cerr << "a3rig: error: " << e.what() << "\n";
+    return 2;
+  }
+  return a3::rigs::command_exit_status();
+}
