@@ -5,8 +5,11 @@ jsonschema.Draft202012Validator with eval/schema/episode.schema.json plus the sa
 semantic rules as eval/semantic_checks.cpp.
 
 usage: py_score.py [--no-validate] [--profile release|paper] [--budget N]
-                   [--model NAME] [--per-episode] DIR...
-Prints one JSON object per model (the SPEC §3 columns)."""
+                   [--model NAME] [--domain NAME] [--per-episode FILE.jsonl] DIR...
+Prints one JSON object per model (the SPEC §3 columns), best alpha3_rel first.
+Same conventions as `a3rig score`: model = the last three folders of a file's path
+(provider/model/domain), the default budget = scenarios found x episode numbers found,
+the paper profile's T_opt = median T of the run's valid successful episodes."""
 import argparse, json, math, os, re, statistics, sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -24,7 +27,15 @@ def clamp01(x):
     return min(1.0, max(0.0, x))
 
 
+def refers(o, a):
+    """An observation refers to an action when it names the action's tool (MCP) or task (A2A)."""
+    if a["type"] == "mcp":
+        return isinstance(o.get("tool"), str) and o["tool"] == a["name"]
+    return isinstance(o.get("task"), str) and o["task"] == a["task"]
+
+
 def semantic_errors(ep):
+    """The rules JSON Schema does not express (eval/episode_document.hpp)."""
     if ep.get("_meta", {}).get("generation_failed") is True:
         return []
     errs, dl = [], ep["dialogue"]
@@ -34,20 +45,26 @@ def semantic_errors(ep):
     for t in dl:
         if t["speaker"] not in ("agent", "user"):
             errs.append("role")
-        elif prev is not None and t["speaker"] == prev:
+        elif t["speaker"] == prev:
             errs.append("alternation")
         prev = t["speaker"]
+        for o in t["obs"]:
+            if "tool" not in o and "task" not in o:
+                errs.append("observation-fields")
+        for a in t["actions"]:
+            need = ("name", "args") if a["type"] == "mcp" else ("task", "to", "payload")
+            if any(k not in a for k in need):
+                errs.append("action-fields")
+            elif not any(refers(o, a) for o in t["obs"]):
+                errs.append("unanswered-action")
     return errs
 
 
-def n_structured(turn):
-    return len(turn["actions"])
-
-
 def matched(action, obs):
+    """TC's match: an A2A answer must also carry from, status and payload."""
     if action.get("type") == "mcp":
-        return any(o.get("tool") == action.get("name") for o in obs)
-    return any(o.get("task") == action.get("task") and all(k in o for k in ("task", "from", "status", "payload")) for o in obs)
+        return any(refers(o, action) for o in obs)
+    return any(refers(o, action) and all(k in o for k in ("task", "from", "status", "payload")) for o in obs)
 
 
 def pillars(ep, prof, t_opt):
@@ -97,65 +114,13 @@ def pillars(ep, prof, t_opt):
     return p
 
 
-def discover(dirs, flat_model):
-    """Returns {model: [paths]}: <provider>/<model>/<domain>/sc-*-ep-*.json, or flat folders."""
-    models = {}
-    for root in dirs:
-        for dp, _, files in os.walk(root):
-            for f in files:
-                if not EPISODE_RE.match(f):
-                    continue
-                path = os.path.join(dp, f)
-                if flat_model:
-                    model = flat_model
-                else:
-                    parts = os.path.relpath(path, root).split(os.sep)
-                    model = "/".join(parts[-4:-2]) if len(parts) >= 4 else os.path.basename(os.path.abspath(dp))
-                models.setdefault(model, []).append(path)
-    return models
-
-
-def score_model(paths, prof, validator, budget):
-    files = len(paths)
-    eps, n_fail, attempts = [], 0, 0
-    gen_t, tokens, successes = [], [], []
-    scen = set(); per_scen = {}
-    for p in paths:
-        m = EPISODE_RE.match(os.path.basename(p))
-        scen.add(m.group(1)); per_scen.setdefault(m.group(1), set()).add(m.group(2))
-        try:
-            if os.path.getsize(p) > MAX_FILE_BYTES:
-                raise ValueError("too big")
-            with open(p, "rb") as fh:
-                ep = json.loads(fh.read())
-            if validator is not None:
-                if not validator.is_valid(ep):
-                    raise ValueError("schema")
-                if semantic_errors(ep):
-                    raise ValueError("semantic")
-        except (ValueError, UnicodeDecodeError):
-            n_fail += 1
-            attempts += 1
-            continue
-        meta = ep.get("_meta", {}) if isinstance(ep, dict) else {}
-        attempts += meta.get("attempts_used", 1) if isinstance(meta.get("attempts_used"), int) else 1
-        if meta.get("generation_failed") is True:
-            n_fail += 1
-            continue
-        eps.append(ep)
-    if budget is None:
-        budget = len(scen) * max((len(v) for v in per_scen.values()), default=0)
-    t_opt = prof["t_opt"]
-    if prof["median_t_opt"]:
-        ts = [len(e["dialogue"]) for e in eps if e["success"] is True]
-        if ts:
-            t_opt = float(statistics.median(ts))
-    scores = [pillars(e, prof, t_opt) for e in eps]
+def summarize(a, budget):
+    eps, scores, files, n_fail, attempts = a["eps"], a["scores"], a["files"], a["n_fail"], a["attempts"]
     n = len(scores)
     mean = lambda xs: sum(xs) / len(xs) if xs else 0.0
-    a = [s["alpha3"] for s in scores]
-    mu = mean(a)
-    ci = 1.96 * math.sqrt(mean([(x - mu) ** 2 for x in a])) / math.sqrt(n) if n else 0.0
+    al = [s["alpha3"] for s in scores]
+    mu = mean(al)
+    ci = 1.96 * math.sqrt(mean([(x - mu) ** 2 for x in al])) / math.sqrt(n) if n else 0.0
     rel = n / (n + n_fail) if (n + n_fail) else 0.0
     cov = min(1.0, n / budget) if budget else 0.0
     eff = min(1.0, budget / attempts) if attempts else 0.0
@@ -172,6 +137,58 @@ def score_model(paths, prof, validator, budget):
                 call_efficiency=eff, files=files, n_fail=n_fail, budget=budget)
 
 
+def discover(dirs, flat_model, flat_domain):
+    """Yields (model, domain, path, scenario, episode) in sorted order."""
+    for root in dirs:
+        if os.path.isfile(root):
+            candidates = [root]
+        else:
+            candidates = []
+            for dp, dns, files in os.walk(root):
+                dns.sort()
+                candidates += [os.path.join(dp, f) for f in sorted(files) if EPISODE_RE.match(f)]
+        for path in candidates:
+            m = EPISODE_RE.match(os.path.basename(path))
+            if flat_model:
+                model, domain = flat_model, flat_domain
+            else:
+                parts = os.path.abspath(path).split(os.sep)
+                domain, model = parts[-2], "/".join(p for p in parts[-4:-2] if p)
+            yield model, domain, path, (m.group(1) if m else None), (m.group(2) if m else None)
+
+
+def load(path, validator):
+    """Returns (status, episode or None, attempts); status is valid, failure_stub or invalid."""
+    attempts = 1
+    try:
+        if os.path.getsize(path) > MAX_FILE_BYTES:
+            return "invalid", None, 1
+        with open(path, "rb") as fh:
+            ep = json.loads(fh.read())
+    except (ValueError, UnicodeDecodeError, OSError):
+        return "invalid", None, 1
+    if isinstance(ep, dict) and isinstance(ep.get("_meta"), dict):
+        a = ep["_meta"].get("attempts_used")
+        if isinstance(a, int) and not isinstance(a, bool) and a >= 1:
+            attempts = a
+    if validator is not None and not validator.is_valid(ep):
+        return "invalid", None, attempts
+    if ep["_meta"].get("generation_failed") is True:
+        return "failure_stub", None, attempts
+    if validator is not None and semantic_errors(ep):
+        return "invalid", None, attempts
+    return "valid", ep, attempts
+
+
+def median_t_opt(args, validator):
+    ts = []
+    for _, _, path, _, _ in discover(args.dirs, args.model, args.domain):
+        status, ep, _ = load(path, validator)
+        if status == "valid" and ep["success"] is True:
+            ts.append(len(ep["dialogue"]))
+    return float(statistics.median(ts)) if ts else 10.0
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("dirs", nargs="+")
@@ -179,6 +196,8 @@ def main():
     ap.add_argument("--profile", default="release", choices=PROFILES)
     ap.add_argument("--budget", type=int)
     ap.add_argument("--model")
+    ap.add_argument("--domain", default="uav")
+    ap.add_argument("--per-episode")
     args = ap.parse_args()
     validator = None
     if not args.no_validate:
@@ -187,9 +206,36 @@ def main():
             schema = json.load(fh)
         jsonschema.Draft202012Validator.check_schema(schema)
         validator = jsonschema.Draft202012Validator(schema)
-    for model, paths in sorted(discover(args.dirs, args.model).items()):
-        row = dict(model=model, domain="uav")
-        row.update(score_model(sorted(paths), PROFILES[args.profile], validator, args.budget))
+    prof = PROFILES[args.profile]
+    t_opt = median_t_opt(args, validator) if prof["median_t_opt"] else prof["t_opt"]
+    per_ep = open(args.per_episode, "w") if args.per_episode else None
+    acc, scen, epis = {}, set(), set()
+    for model, domain, path, sc, epn in discover(args.dirs, args.model, args.domain):
+        if sc is not None:
+            scen.add(int(sc))
+            epis.add(int(epn))
+        a = acc.setdefault((model, domain), dict(files=0, n_fail=0, attempts=0, eps=[], scores=[]))
+        status, ep, attempts = load(path, validator)
+        a["files"] += 1
+        a["attempts"] += attempts
+        row = dict(file=path, status=status)
+        if status == "valid":
+            p = pillars(ep, prof, t_opt)
+            a["eps"].append(ep)
+            a["scores"].append(p)
+            row.update(p)
+        else:
+            a["n_fail"] += 1
+        if per_ep:
+            per_ep.write(json.dumps(row) + "\n")
+    budget = args.budget if args.budget else (len(scen) * len(epis) or sum(a["files"] for a in acc.values()))
+    rows = []
+    for (model, domain), a in acc.items():
+        row = dict(model=model, domain=domain)
+        row.update(summarize(a, budget))
+        rows.append(row)
+    rows.sort(key=lambda r: (-r["alpha3_rel"], -r["mean"]))
+    for row in rows:
         print(json.dumps(row))
 
 

@@ -1,0 +1,66 @@
+// Finding episode files: `<provider>/<model>/<domain>/sc-XXXX-ep-YY.json` trees (the α³-Bench
+// layout) or flat folders. Walks lazily in sorted order (deterministic output) and holds one
+// folder listing at a time, never the whole corpus.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace a3::eval {
+
+// Scenario and episode numbers of a file named sc-XXXX-ep-YY.json.
+struct EpisodeName {
+  int scenario = -1;
+  int episode = -1;
+};
+std::optional<EpisodeName> parse_episode_name(const std::string& file_name);
+
+struct EpisodeFile {
+  std::filesystem::path path;
+  std::string model;   // "provider/model", or the --model override
+  std::string domain;  // the domain folder, or the --domain override
+  std::optional<EpisodeName> name;
+};
+
+struct CorpusOptions {
+  std::string model_override;             // flat folders: every file belongs to this model
+  std::string domain_override = "uav";    // with model_override
+};
+
+// model and domain of a file from its path: the last three folders are provider/model/domain.
+void attribute_model(EpisodeFile& file, const CorpusOptions& options);
+
+class CorpusWalker {
+ public:
+  // roots: folders (searched recursively for sc-XXXX-ep-YY.json) or files (taken as they are).
+  // Throws std::invalid_argument for a root that does not exist.
+  CorpusWalker(std::vector<std::filesystem::path> roots, CorpusOptions options);
+
+  // The next episode file, or nothing at the end.
+  std::optional<EpisodeFile> next();
+
+  // Problems met while walking (unreadable folders), for the caller to report.
+  const std::vector<std::string>& warnings() const { return warnings_; }
+  // .json files in the folders that are not named sc-XXXX-ep-YY.json (not scored).
+  uint64_t ignored_json_files() const { return ignored_json_; }
+
+ private:
+  struct Frame {
+    std::vector<std::filesystem::directory_entry> entries;  // sorted by path
+    std::size_t next = 0;
+    std::string model, domain;  // attribution shared by the folder's files
+  };
+  void push_directory(const std::filesystem::path& dir);
+
+  std::vector<std::filesystem::path> roots_;
+  std::size_t next_root_ = 0;
+  CorpusOptions options_;
+  std::vector<Frame> stack_;
+  std::vector<std::string> warnings_;
+  uint64_t ignored_json_ = 0;
+};
+
+}  // namespace a3::eval

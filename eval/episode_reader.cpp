@@ -1,0 +1,143 @@
+// File → parse (RapidJSON) → schema (valijson) → semantic rules → facts.
+#include "eval/episode_reader.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+
+#include <cerrno>
+#include <cstring>
+
+#include "eval/episode_document.hpp"
+#include "eval/utf8.hpp"
+
+namespace a3::eval {
+namespace {
+
+constexpr unsigned kParseFlags = rapidjson::kParseFullPrecisionFlag;
+
+EpisodeCheck invalid(std::string rule, std::string message) {
+  EpisodeCheck check;
+  check.status = EpisodeStatus::kInvalid;
+  check.violations.push_back({"", std::move(rule), std::move(message)});
+  return check;
+}
+
+std::string syntax_message(std::string_view text, std::size_t offset,
+                           rapidjson::ParseErrorCode code) {
+  std::size_t line = 1, column = 1;
+  for (std::size_t i = 0; i < offset && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  std::string message = "not valid JSON at line " + std::to_string(line) + ", column " +
+                        std::to_string(column) + " (byte " + std::to_string(offset) + "): " +
+                        rapidjson::GetParseError_En(code);
+  if (offset >= text.size() && code != rapidjson::kParseErrorDocumentEmpty) {
+    message += " (the file ends early: truncated?)";
+  }
+  return message;
+}
+
+}  // namespace
+
+const char* to_string(EpisodeStatus status) {
+  switch (status) {
+    case EpisodeStatus::kValid: return "valid";
+    case EpisodeStatus::kFailureStub: return "failure_stub";
+    case EpisodeStatus::kInvalid: return "invalid";
+  }
+  return "invalid";
+}
+
+EpisodeReader::EpisodeReader(const JsonSchemaValidator& validator, const ScoringProfile& profile,
+                             std::uintmax_t max_file_bytes)
+    : validator_(validator),
+      profile_(profile),
+      max_file_bytes_(max_file_bytes),
+      pool_chunk_(kPoolChunkBytes),
+      pool_(pool_chunk_.data(), pool_chunk_.size()) {}
+
+EpisodeCheck EpisodeReader::check_file(const std::filesystem::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return invalid("file-read", std::string("cannot open: ") + std::strerror(errno));
+  struct stat info {};
+  if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
+    ::close(fd);
+    return invalid("file-read", "not a regular file");
+  }
+  const auto size = static_cast<std::uintmax_t>(info.st_size);
+  if (size > max_file_bytes_) {
+    ::close(fd);
+    return invalid("file-size", "the file is " + std::to_string(size) +
+                                    " bytes, more than the limit of " +
+                                    std::to_string(max_file_bytes_) + " bytes (--max-file-mb)");
+  }
+  buffer_.resize(static_cast<std::size_t>(size));
+  std::size_t got = 0;
+  while (got < size) {
+    const ssize_t n = ::read(fd, buffer_.data() + got, static_cast<std::size_t>(size) - got);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const std::string why = n < 0 ? std::strerror(errno) : "file shrank while reading";
+      ::close(fd);
+      return invalid("file-read", "cannot read: " + why);
+    }
+    got += static_cast<std::size_t>(n);
+  }
+  ::close(fd);
+  return check_buffer(got);
+}
+
+EpisodeCheck EpisodeReader::check_text(std::string_view text) {
+  if (text.size() > max_file_bytes_) {
+    return invalid("file-size", "the text is " + std::to_string(text.size()) +
+                                    " bytes, more than the limit of " +
+                                    std::to_string(max_file_bytes_) + " bytes");
+  }
+  buffer_.assign(text);
+  return check_buffer(text.size());
+}
+
+EpisodeCheck EpisodeReader::check_buffer(std::size_t size) {
+  const std::string_view text(buffer_.data(), size);
+  if (const auto bad = find_invalid_utf8(text)) {
+    return invalid("json-syntax", "not UTF-8: invalid byte sequence at byte " + std::to_string(*bad));
+  }
+  // The pool keeps its first chunk between files, so a typical episode parses without malloc.
+  pool_.Clear();
+  rapidjson::Document document(&pool_);
+  if (document.Parse<kParseFlags>(text.data(), text.size()).HasParseError()) {
+    return invalid("json-syntax",
+                   syntax_message(text, document.GetErrorOffset(), document.GetParseError()));
+  }
+  EpisodeCheck check;
+  check.attempts_used = attempts_used_or_one(document);
+  if (!validator_.is_valid(document)) {
+    check.status = EpisodeStatus::kInvalid;
+    check.violations = validator_.violations(document);
+    if (check.violations.empty()) {
+      check.violations.push_back({"", "schema", "does not match the episode schema"});
+    }
+    return check;
+  }
+  if (is_failure_stub(document)) {
+    check.status = EpisodeStatus::kFailureStub;
+    return check;
+  }
+  check.violations = check_semantics(document, profile_);
+  if (!check.violations.empty()) {
+    check.status = EpisodeStatus::kInvalid;
+    return check;
+  }
+  check.status = EpisodeStatus::kValid;
+  check.facts = extract_facts(document);
+  return check;
+}
+
+}  // namespace a3::eval

@@ -1,0 +1,98 @@
+// valijson behind a small interface.
+#include "eval/json_schema_validator.hpp"
+
+#include <valijson/schema.hpp>
+#include <valijson/schema_parser.hpp>
+#include <valijson/validation_results.hpp>
+#include <valijson/validator.hpp>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace a3::eval {
+
+JsonSchemaValidator::JsonSchemaValidator(std::string_view schema_json,
+                                         std::string_view schema_name)
+    : schema_(std::make_unique<valijson::Schema>()) {
+  rapidjson::Document doc;
+  doc.Parse(schema_json.data(), schema_json.size());
+  if (doc.HasParseError()) {
+    throw std::invalid_argument(std::string(schema_name) + ": schema is not valid JSON (offset " +
+                                std::to_string(doc.GetErrorOffset()) + "): " +
+                                rapidjson::GetParseError_En(doc.GetParseError()));
+  }
+  try {
+    valijson::SchemaParser parser(valijson::SchemaParser::kDraft7);
+    valijson::adapters::RapidJsonAdapter adapter(doc);
+    parser.populateSchema(adapter, *schema_);
+  } catch (const std::exception& e) {
+    throw std::invalid_argument(std::string(schema_name) + ": not a usable JSON Schema: " +
+                                e.what());
+  }
+}
+
+JsonSchemaValidator::~JsonSchemaValidator() = default;
+
+bool JsonSchemaValidator::is_valid(const rapidjson::Value& document) const {
+  valijson::Validator validator;
+  valijson::adapters::RapidJsonAdapter adapter(document);
+  return validator.validate(*schema_, adapter, nullptr);
+}
+
+std::string context_to_json_pointer(const std::vector<std::string>& context) {
+  std::string pointer;
+  for (const std::string& part : context) {
+    if (part == "<root>") continue;
+    std::string_view token = part;
+    if (token.size() >= 2 && token.front() == '[' && token.back() == ']') {
+      token = token.substr(1, token.size() - 2);
+    }
+    pointer += '/';
+    for (char c : token) {
+      if (c == '~') {
+        pointer += "~0";
+      } else if (c == '/') {
+        pointer += "~1";
+      } else {
+        pointer += c;
+      }
+    }
+  }
+  return pointer;
+}
+
+Violations JsonSchemaValidator::violations(const rapidjson::Value& document) const {
+  valijson::Validator validator;
+  valijson::ValidationResults results;
+  valijson::adapters::RapidJsonAdapter adapter(document);
+  if (validator.validate(*schema_, adapter, &results)) return {};
+
+  std::vector<std::pair<std::string, std::string>> errors;
+  valijson::ValidationResults::Error error;
+  while (results.popError(error)) {
+    errors.emplace_back(context_to_json_pointer(error.context), error.description);
+  }
+  // valijson also reports every enclosing object and array ("Failed to validate item #3");
+  // keep the leaf-most errors, which name the actual bad value.
+  auto has_deeper = [&](const std::string& pointer) {
+    return std::any_of(errors.begin(), errors.end(), [&](const auto& other) {
+      return other.first.size() > pointer.size() && other.first.compare(0, pointer.size(), pointer) == 0 &&
+             other.first[pointer.size()] == '/';
+    });
+  };
+  Violations out;
+  for (const auto& [pointer, description] : errors) {
+    if (has_deeper(pointer)) continue;
+    if (description.rfind("Failed to validate against a conditional schema", 0) == 0 &&
+        errors.size() > 1) {
+      continue;
+    }
+    const bool duplicate = std::any_of(out.begin(), out.end(), [&](const Violation& v) {
+      return v.json_path == pointer && v.message == description;
+    });
+    if (!duplicate) out.push_back({pointer, "schema", description});
+  }
+  return out;
+}
+
+}  // namespace a3::eval

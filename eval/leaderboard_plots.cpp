@@ -1,0 +1,153 @@
+// gnuplot figures of the leaderboard.
+#include "eval/leaderboard_plots.hpp"
+
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <fcntl.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "eval/leaderboard_format.hpp"
+
+extern char** environ;
+
+namespace a3::eval {
+namespace fs = std::filesystem;
+namespace {
+
+// gnuplot string literal in single quotes (no escapes inside single quotes except '').
+std::string quoted(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) {
+    out += c;
+    if (c == '\'') out += '\'';
+  }
+  return out + "'";
+}
+
+std::string label_of(const std::string& model) {
+  std::string label;
+  for (char c : model) label += (c == '\t' || c == '\n' || c == '"') ? ' ' : c;
+  return "\"" + label + "\"";
+}
+
+std::string script(const fs::path& dir) {
+  const std::string data = quoted((dir / "leaderboard.tsv").string());
+  auto out = [&](const char* name) { return quoted((dir / name).string()); };
+  std::ostringstream gp;
+  gp << "# a3rig leaderboard figures; data columns: see the header of leaderboard.tsv\n"
+     << "set terminal pngcairo size 1100,650 font ',11' noenhanced\n"
+     << "set datafile separator '\\t'\n"
+     << "set key off\nset grid ytics\nset style fill solid 0.8 border -1\n"
+     << "set xtics rotate by -30 left\nset bmargin 9\nset yrange [0:*]\n"
+     << "set boxwidth 0.6\n"
+     // 1: mean α³ with ci95
+     << "set output " << out("mean_score.png") << "\n"
+     << "set title 'Mean α³ per model (error bar: 95 % interval)'\nset ylabel 'mean α³'\n"
+     << "set yrange [0:1.05]\n"
+     << "plot " << data << " using 0:3:xtic(1) with boxes lc rgb '#4C72B0', '' using 0:3:4 "
+     << "with yerrorbars lc rgb 'black' pt -1\n"
+     // 2: α³_rel
+     << "set output " << out("alpha3_rel.png") << "\n"
+     << "set title 'Reliability-adjusted α³_rel per model'\nset ylabel 'α³_rel'\n"
+     << "plot " << data << " using 0:5:xtic(1) with boxes lc rgb '#55A868'\n"
+     // 3, 4: efficiency against score
+     << "unset xtics\nset xtics rotate by 0\nset bmargin 4\nset autoscale\nset grid xtics ytics\n"
+     << "set xlabel 'mean α³'\n"
+     << "set output " << out("alpha3_per_1k_tokens_vs_mean.png") << "\n"
+     << "set title 'α³ per 1k tokens against mean α³'\nset ylabel 'α³_rel per 1k tokens'\n"
+     << "plot " << data << " using 3:6 with points pt 7 ps 1.6 lc rgb '#C44E52', '' using "
+     << "3:6:1 with labels offset 1,0.8 left\n"
+     << "set output " << out("alpha3_per_second_vs_mean.png") << "\n"
+     << "set title 'α³ per second against mean α³'\nset ylabel 'α³_rel per second of generation'\n"
+     << "plot " << data << " using 3:7 with points pt 7 ps 1.6 lc rgb '#8172B2', '' using "
+     << "3:7:1 with labels offset 1,0.8 left\n"
+     // 5: generation time and tokens
+     << "unset xlabel\nset xtics rotate by -30 left\nset bmargin 9\nset grid ytics\nunset grid\n"
+     << "set terminal pngcairo size 1100,900 font ',11' noenhanced\n"
+     << "set output " << out("gen_time_and_tokens.png") << "\n"
+     << "set multiplot layout 2,1 title 'Generation cost per model'\n"
+     << "set yrange [0:*]\nset title 'mean generation time'\nset ylabel 's'\n"
+     << "plot " << data << " using 0:8:xtic(1) with boxes lc rgb '#DD8452'\n"
+     << "set title 'mean total tokens'\nset ylabel 'tokens'\n"
+     << "plot " << data << " using 0:9:xtic(1) with boxes lc rgb '#937860'\n"
+     << "unset multiplot\n";
+  return gp.str();
+}
+
+void run_gnuplot(const fs::path& script_path, const fs::path& log_path) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_path.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  std::string program = "gnuplot";
+  std::string script_arg = script_path.string();
+  char* argv[] = {program.data(), script_arg.data(), nullptr};
+  pid_t pid = 0;
+  const int spawn_error = ::posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawn_error != 0) {
+    throw std::runtime_error(std::string("cannot run gnuplot (") + std::strerror(spawn_error) +
+                             "); install it with: apt-get install gnuplot-nox");
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    std::ifstream log(log_path);
+    std::stringstream text;
+    text << log.rdbuf();
+    throw std::runtime_error("gnuplot failed on " + script_path.string() + ": " + text.str());
+  }
+}
+
+}  // namespace
+
+const std::vector<std::string>& leaderboard_plot_files() {
+  static const std::vector<std::string> kFiles = {
+      "mean_score.png", "alpha3_rel.png", "alpha3_per_1k_tokens_vs_mean.png",
+      "alpha3_per_second_vs_mean.png", "gen_time_and_tokens.png"};
+  return kFiles;
+}
+
+void write_leaderboard_plots(const fs::path& dir, const std::vector<ModelSummary>& rows) {
+  if (rows.empty()) throw std::runtime_error("no model to plot");
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw std::runtime_error(dir.string() + ": cannot create: " + ec.message());
+  const fs::path abs_dir = fs::absolute(dir);
+  {
+    std::ofstream data(abs_dir / "leaderboard.tsv");
+    data << "# model\tdomain\tmean\tci95\talpha3_rel\talpha3_per_1k_tokens\talpha3_per_second"
+            "\tmean_gen_time_s\tmean_total_tokens\n";
+    for (const auto& r : rows) {
+      data << label_of(r.model) << "\t" << r.domain << "\t" << format_double(r.mean) << "\t"
+           << format_double(r.ci95) << "\t" << format_double(r.alpha3_rel) << "\t"
+           << format_double(r.alpha3_per_1k_tokens) << "\t" << format_double(r.alpha3_per_second)
+           << "\t" << format_double(r.mean_gen_time_s) << "\t"
+           << format_double(r.mean_total_tokens) << "\n";
+    }
+    if (!data) throw std::runtime_error((abs_dir / "leaderboard.tsv").string() + ": write failed");
+  }
+  const fs::path script_path = abs_dir / "plots.gp";
+  {
+    std::ofstream gp(script_path);
+    gp << script(abs_dir);
+    if (!gp) throw std::runtime_error(script_path.string() + ": write failed");
+  }
+  run_gnuplot(script_path, abs_dir / "gnuplot.log");
+  for (const auto& name : leaderboard_plot_files()) {
+    if (fs::file_size(abs_dir / name, ec) == 0 || ec) {
+      throw std::runtime_error("gnuplot did not write " + (abs_dir / name).string());
+    }
+  }
+}
+
+}  // namespace a3::eval
