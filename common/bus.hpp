@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <memory>
 #include <string>
@@ -51,7 +52,14 @@ class Bus {
                                       const std::string& ch, const uint8_t* data,
                                       std::size_t size, int64_t recv_utime_us) {
       Msg msg;
-      if (msg.decode(data, 0, static_cast<int>(size)) < 0) {
+      int decoded = -1;
+      try {
+        decoded = msg.decode(data, 0, static_cast<int>(size));
+      } catch (const std::exception&) {
+        // lcm-gen decoders throw (length_error, bad_alloc) on a bad length field.
+        decoded = -1;
+      }
+      if (decoded < 0) {
         ++decode_failures_;
         log_warn("bus", "dropped a message on " + ch + " that does not decode as " +
                             std::string(Msg::getTypeName()) + " (" + std::to_string(size) +

@@ -54,7 +54,10 @@ double require_number(const nlohmann::json& object, const std::string& key,
 
 double number_or(const nlohmann::json& object, const std::string& key, double fallback,
                  const std::string& where) {
-  if (!object.is_object() || !object.contains(key)) return fallback;
+  if (!object.is_object()) {
+    throw InputError(where + ": expected an object, got " + std::string(object.type_name()));
+  }
+  if (!object.contains(key)) return fallback;
   return require_number(object, key, where);
 }
 

@@ -70,7 +70,6 @@ std::vector<double> RealTimeExecutor::lateness_samples_us() const {
 void RealTimeExecutor::run(int64_t end_us) {
   // Wake-ups as close to the deadline as the kernel allows (default slack is 50 us).
   ::prctl(PR_SET_TIMERSLACK, 1UL, 0, 0, 0);
-  stop_ = false;
   pollfd fds[2] = {{wake_fd_, POLLIN, 0}, {bus_ != nullptr ? bus_->fileno() : -1, POLLIN, 0}};
   const nfds_t nfds = bus_ != nullptr ? 2 : 1;
 
@@ -104,8 +103,9 @@ void RealTimeExecutor::run(int64_t end_us) {
 
     // Run every timer due now, in schedule order.
     while (!stop_) {
-      const int64_t mono_now_ns = WallClock::monotonic_now_ns();
+      // In this order, a timer due at now_us was due by mono_now_ns: lateness is never < 0.
       const int64_t now_us = clock_.now_us();
+      const int64_t mono_now_ns = WallClock::monotonic_now_ns();
       std::optional<TimerQueue::Due> due;
       {
         std::lock_guard<std::mutex> lock(mutex_);
@@ -129,6 +129,8 @@ void RealTimeExecutor::run(int64_t end_us) {
     }
     if (end_us >= 0 && clock_.now_us() >= end_us) break;
   }
+  // A stop() that came before run() started is honoured above, and consumed here.
+  stop_ = false;
 }
 
 }  // namespace a3::common

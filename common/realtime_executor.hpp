@@ -30,6 +30,7 @@ class RealTimeExecutor final : public Executor {
   void cancel(TimerId id) override;
 
   // Runs until stop() (from any thread or a callback) or until sim time end_us (< 0: none).
+  // A stop() issued before run() starts makes it return at once.
   void run(int64_t end_us = -1);
   void stop();
 

@@ -1,0 +1,143 @@
+// TimerQueue, the deterministic core of both executors: (time, insertion) order, periodic
+// re-arming on schedule, cancellation (also of a timer whose callback is running).
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "common/timer_queue.hpp"
+
+namespace a3::common {
+namespace {
+
+// Pops and runs everything due at or before t_us, as an executor does; records the times.
+void drain(TimerQueue& queue, int64_t t_us, std::vector<std::string>& times) {
+  while (auto due = queue.pop_due(t_us)) {
+    times.push_back(std::to_string(due->time_us));
+    (*due->fn)();
+    queue.finish(*due);
+  }
+}
+
+TEST(TimerQueue, OrdersByTimeThenInsertion) {
+  TimerQueue queue;
+  std::vector<std::string> ran;
+  queue.add(300, 0, [&] { ran.push_back("c300"); });
+  queue.add(100, 0, [&] { ran.push_back("a100"); });
+  queue.add(200, 0, [&] { ran.push_back("b200-first"); });
+  queue.add(200, 0, [&] { ran.push_back("b200-second"); });
+  queue.add(200, 0, [&] { ran.push_back("b200-third"); });
+  EXPECT_EQ(queue.next_time_us(), 100);
+  std::vector<std::string> times;
+  drain(queue, 1000, times);
+  EXPECT_EQ(ran, (std::vector<std::string>{"a100", "b200-first", "b200-second", "b200-third",
+                                           "c300"}));
+  EXPECT_EQ(times, (std::vector<std::string>{"100", "200", "200", "200", "300"}));
+  EXPECT_EQ(queue.size(), 0u);
+  EXPECT_FALSE(queue.next_time_us().has_value());
+}
+
+TEST(TimerQueue, PopsOnlyWhatIsDue) {
+  TimerQueue queue;
+  queue.add(100, 0, [] {});
+  queue.add(101, 0, [] {});
+  EXPECT_FALSE(queue.pop_due(99).has_value());
+  auto due = queue.pop_due(100);
+  ASSERT_TRUE(due.has_value());
+  EXPECT_EQ(due->time_us, 100);
+  queue.finish(*due);
+  EXPECT_FALSE(queue.pop_due(100).has_value()) << "the timer at 101 is not due at 100";
+  EXPECT_EQ(queue.next_time_us(), 101);
+}
+
+TEST(TimerQueue, PeriodicTimerKeepsItsScheduleAndIsRearmedBeforeItRuns) {
+  TimerQueue queue;
+  int runs = 0;
+  const TimerId id = queue.add(1000, 250, [&] { ++runs; });
+  std::vector<int64_t> times;
+  // Pop late (at 1900): every missed period is still owed, at its own scheduled time.
+  while (auto due = queue.pop_due(1900)) {
+    EXPECT_EQ(due->id, id);
+    times.push_back(due->time_us);
+    // Re-armed already: the next period is pending while this callback would run.
+    EXPECT_EQ(queue.next_time_us(), due->time_us + 250);
+    (*due->fn)();
+    queue.finish(*due);
+  }
+  EXPECT_EQ(times, (std::vector<int64_t>{1000, 1250, 1500, 1750}));
+  EXPECT_EQ(runs, 4);
+  EXPECT_EQ(queue.size(), 1u) << "a periodic timer stays until cancelled";
+  EXPECT_EQ(queue.next_time_us(), 2000);
+}
+
+TEST(TimerQueue, PeriodicTimerInterleavesWithOneShotsInOrder) {
+  TimerQueue queue;
+  std::vector<std::string> ran;
+  queue.add(0, 100, [&] { ran.push_back("p"); });
+  queue.add(100, 0, [&] { ran.push_back("x100"); });  // inserted before p's re-arm at 100
+  queue.add(250, 0, [&] { ran.push_back("x250"); });
+  std::vector<std::string> times;
+  drain(queue, 300, times);
+  EXPECT_EQ(ran, (std::vector<std::string>{"p", "x100", "p", "p", "x250", "p"}));
+  EXPECT_EQ(times, (std::vector<std::string>{"0", "100", "100", "200", "250", "300"}));
+}
+
+TEST(TimerQueue, CancelRemovesAPendingTimerAndIgnoresUnknownIds) {
+  TimerQueue queue;
+  bool a = false, b = false;
+  const TimerId ida = queue.add(10, 0, [&] { a = true; });
+  queue.add(20, 0, [&] { b = true; });
+  queue.cancel(ida);
+  queue.cancel(ida);     // twice: ignored
+  queue.cancel(12345);   // unknown: ignored
+  EXPECT_EQ(queue.size(), 1u);
+  EXPECT_EQ(queue.next_time_us(), 20);
+  std::vector<std::string> times;
+  drain(queue, 100, times);
+  EXPECT_FALSE(a);
+  EXPECT_TRUE(b);
+}
+
+TEST(TimerQueue, PeriodicCallbackMayCancelItsOwnTimer) {
+  TimerQueue queue;
+  int runs = 0;
+  TimerId id = 0;
+  id = queue.add(0, 10, [&] {
+    if (++runs == 3) queue.cancel(id);
+  });
+  std::vector<std::string> times;
+  drain(queue, 1000, times);
+  EXPECT_EQ(runs, 3);
+  EXPECT_EQ(queue.size(), 0u);
+  EXPECT_FALSE(queue.next_time_us().has_value());
+}
+
+TEST(TimerQueue, OneShotCallbackMayCancelItselfAndAddTimers) {
+  TimerQueue queue;
+  std::vector<std::string> ran;
+  TimerId id = 0;
+  id = queue.add(5, 0, [&] {
+    ran.push_back("first");
+    queue.cancel(id);  // cancelling a running one-shot is harmless
+    queue.add(5, 0, [&] { ran.push_back("added-same-time"); });
+    queue.add(7, 0, [&] { ran.push_back("added-later"); });
+  });
+  std::vector<std::string> times;
+  drain(queue, 10, times);
+  EXPECT_EQ(ran, (std::vector<std::string>{"first", "added-same-time", "added-later"}));
+  EXPECT_EQ(queue.size(), 0u);
+}
+
+TEST(TimerQueue, IdsAreUniqueAndIncreasing) {
+  TimerQueue queue;
+  TimerId last = 0;
+  for (int i = 0; i < 100; ++i) {
+    const TimerId id = queue.add(i % 7, i % 3, [] {});
+    EXPECT_GT(id, last);
+    last = id;
+  }
+  EXPECT_EQ(queue.size(), 100u);
+}
+
+}  // namespace
+}  // namespace a3::common
