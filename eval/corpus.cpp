@@ -67,7 +67,8 @@ CorpusWalker::CorpusWalker(std::vector<fs::path> roots, CorpusOptions options)
 void CorpusWalker::push_directory(const fs::path& dir) {
   Frame frame;
   std::error_code ec;
-  fs::directory_iterator it(dir, fs::directory_options::skip_permission_denied, ec);
+  // No skip_permission_denied: it would turn an unreadable folder into an empty one, unreported.
+  fs::directory_iterator it(dir, ec);
   if (ec) {
     warnings_.push_back(dir.string() + ": cannot list: " + ec.message());
     return;

@@ -67,39 +67,60 @@ EpisodeCheck EpisodeReader::check_file(const std::filesystem::path& path) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) return invalid("file-read", std::string("cannot open: ") + std::strerror(errno));
   struct stat info {};
-  if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
+  if (::fstat(fd, &info) != 0 || S_ISDIR(info.st_mode)) {
     ::close(fd);
-    return invalid("file-read", "not a regular file");
+    return invalid("file-read", S_ISDIR(info.st_mode) ? "is a folder" : "cannot stat");
   }
+  // Regular files are read in one go; pipes (/dev/stdin) until their end, within the limit.
+  const bool regular = S_ISREG(info.st_mode);
   const auto size = static_cast<std::uintmax_t>(info.st_size);
-  if (size > max_file_bytes_) {
+  if (regular && size > max_file_bytes_) {
     ::close(fd);
-    return invalid("file-size", "the file is " + std::to_string(size) +
-                                    " bytes, more than the limit of " +
-                                    std::to_string(max_file_bytes_) + " bytes (--max-file-mb)");
+    return too_big(size);
   }
-  buffer_.resize(static_cast<std::size_t>(size));
+  buffer_.resize(regular ? static_cast<std::size_t>(size) : std::size_t{64} << 10);
   std::size_t got = 0;
-  while (got < size) {
-    const ssize_t n = ::read(fd, buffer_.data() + got, static_cast<std::size_t>(size) - got);
+  while (true) {
+    if (got == buffer_.size()) {
+      if (regular) break;
+      if (got > max_file_bytes_) {
+        ::close(fd);
+        return too_big(got);
+      }
+      buffer_.resize(buffer_.size() * 2);
+    }
+    const ssize_t n = ::read(fd, buffer_.data() + got, buffer_.size() - got);
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const std::string why = n < 0 ? std::strerror(errno) : "file shrank while reading";
+    if (n < 0) {
+      const std::string why = std::strerror(errno);
       ::close(fd);
       return invalid("file-read", "cannot read: " + why);
     }
+    if (n == 0) {
+      if (regular && got < size) {
+        ::close(fd);
+        return invalid("file-read", "cannot read: the file shrank while reading");
+      }
+      break;
+    }
     got += static_cast<std::size_t>(n);
+  }
+  if (got > max_file_bytes_) {
+    ::close(fd);
+    return too_big(got);
   }
   ::close(fd);
   return check_buffer(got);
 }
 
+EpisodeCheck EpisodeReader::too_big(std::uintmax_t size) const {
+  return invalid("file-size", "the file is " + std::to_string(size) +
+                                  " bytes, more than the limit of " +
+                                  std::to_string(max_file_bytes_) + " bytes (--max-file-mb)");
+}
+
 EpisodeCheck EpisodeReader::check_text(std::string_view text) {
-  if (text.size() > max_file_bytes_) {
-    return invalid("file-size", "the text is " + std::to_string(text.size()) +
-                                    " bytes, more than the limit of " +
-                                    std::to_string(max_file_bytes_) + " bytes");
-  }
+  if (text.size() > max_file_bytes_) return too_big(text.size());
   buffer_.assign(text);
   return check_buffer(text.size());
 }

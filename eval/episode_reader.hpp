@@ -35,12 +35,14 @@ class EpisodeReader {
   EpisodeReader(const JsonSchemaValidator& validator, const ScoringProfile& profile,
                 std::uintmax_t max_file_bytes = kDefaultMaxEpisodeFileBytes);
 
+  // A regular file, or a pipe such as /dev/stdin (read to its end).
   EpisodeCheck check_file(const std::filesystem::path& path);
   // Checks JSON text already in memory (the text is copied).
   EpisodeCheck check_text(std::string_view text);
 
  private:
   EpisodeCheck check_buffer(std::size_t size);
+  EpisodeCheck too_big(std::uintmax_t size) const;
 
   const JsonSchemaValidator& validator_;
   const ScoringProfile& profile_;

@@ -72,21 +72,23 @@ Violations JsonSchemaValidator::violations(const rapidjson::Value& document) con
   while (results.popError(error)) {
     errors.emplace_back(context_to_json_pointer(error.context), error.description);
   }
-  // valijson also reports every enclosing object and array ("Failed to validate item #3");
-  // keep the leaf-most errors, which name the actual bad value.
+  // valijson also reports every enclosing object and array ("Failed to validate item #3 in
+  // array.", "... associated with property name 'dialogue'."): report the specific errors,
+  // and fall back to the deepest summaries only when there is nothing more specific.
+  auto is_summary = [](const std::string& description) {
+    return description.rfind("Failed to validate ", 0) == 0;
+  };
   auto has_deeper = [&](const std::string& pointer) {
     return std::any_of(errors.begin(), errors.end(), [&](const auto& other) {
-      return other.first.size() > pointer.size() && other.first.compare(0, pointer.size(), pointer) == 0 &&
-             other.first[pointer.size()] == '/';
+      return other.first.size() > pointer.size() &&
+             other.first.compare(0, pointer.size(), pointer) == 0 && other.first[pointer.size()] == '/';
     });
   };
+  const bool any_specific = std::any_of(errors.begin(), errors.end(),
+                                        [&](const auto& e) { return !is_summary(e.second); });
   Violations out;
   for (const auto& [pointer, description] : errors) {
-    if (has_deeper(pointer)) continue;
-    if (description.rfind("Failed to validate against a conditional schema", 0) == 0 &&
-        errors.size() > 1) {
-      continue;
-    }
+    if (any_specific ? is_summary(description) : has_deeper(pointer)) continue;
     const bool duplicate = std::any_of(out.begin(), out.end(), [&](const Violation& v) {
       return v.json_path == pointer && v.message == description;
     });

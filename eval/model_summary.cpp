@@ -6,6 +6,12 @@
 
 namespace a3::eval {
 
+void CompensatedSum::add(double x) {
+  const double t = sum_ + x;
+  compensation_ += std::abs(sum_) >= std::abs(x) ? (sum_ - t) + x : (x - t) + sum_;
+  sum_ = t;
+}
+
 ModelAccumulator::ModelAccumulator(std::string model, std::string domain)
     : model_(std::move(model)), domain_(std::move(domain)) {}
 
@@ -14,18 +20,18 @@ void ModelAccumulator::add_valid(const EpisodeFacts& facts, const Pillars& p) {
   ++valid_;
   attempts_ += facts.attempts_used;
   if (facts.success) ++successes_;
-  alpha3_sum_ += p.alpha3;
+  alpha3_sum_.add(p.alpha3);
   const double delta = p.alpha3 - welford_mean_;
   welford_mean_ += delta / static_cast<double>(valid_);
   welford_m2_ += delta * (p.alpha3 - welford_mean_);
-  pillar_sums_.to += p.to;
-  pillar_sums_.sp += p.sp;
-  pillar_sums_.tc += p.tc;
-  pillar_sums_.iq += p.iq;
-  pillar_sums_.nr += p.nr;
-  pillar_sums_.cc += p.cc;
-  gen_time_sum_s_ += facts.gen_time_s;
-  tokens_sum_ += facts.total_tokens;
+  to_sum_.add(p.to);
+  sp_sum_.add(p.sp);
+  tc_sum_.add(p.tc);
+  iq_sum_.add(p.iq);
+  nr_sum_.add(p.nr);
+  cc_sum_.add(p.cc);
+  gen_time_sum_s_.add(facts.gen_time_s);
+  tokens_sum_.add(facts.total_tokens);
 }
 
 void ModelAccumulator::add_failure(EpisodeStatus status, int64_t attempts_used) {
@@ -46,13 +52,13 @@ ModelSummary ModelAccumulator::summarize(int64_t budget, double ci95_z) const {
   s.total_attempt_calls = attempts_;
   const double n = static_cast<double>(valid_);
   if (valid_ > 0) {
-    s.mean = alpha3_sum_ / n;
+    s.mean = alpha3_sum_.value() / n;
     s.ci95 = ci95_z * std::sqrt(welford_m2_ / n) / std::sqrt(n);
     s.success_rate = static_cast<double>(successes_) / n;
-    s.pillars = {pillar_sums_.to / n, pillar_sums_.sp / n, pillar_sums_.tc / n,
-                 pillar_sums_.iq / n, pillar_sums_.nr / n, pillar_sums_.cc / n};
-    s.mean_gen_time_s = gen_time_sum_s_ / n;
-    s.mean_total_tokens = tokens_sum_ / n;
+    s.pillars = {to_sum_.value() / n, sp_sum_.value() / n, tc_sum_.value() / n,
+                 iq_sum_.value() / n, nr_sum_.value() / n, cc_sum_.value() / n};
+    s.mean_gen_time_s = gen_time_sum_s_.value() / n;
+    s.mean_total_tokens = tokens_sum_.value() / n;
   }
   const double files = static_cast<double>(files_);
   s.gen_fail_rate = files_ > 0 ? static_cast<double>(s.n_fail) / files : 0.0;

@@ -41,6 +41,16 @@ struct ModelSummary {
   int64_t budget = 0;
 };
 
+// Neumaier-compensated sum: a corpus of 10^5 episodes sums to the last bit, not to ~1e-12.
+class CompensatedSum {
+ public:
+  void add(double x);
+  double value() const { return sum_ + compensation_; }
+
+ private:
+  double sum_ = 0.0, compensation_ = 0.0;
+};
+
 class ModelAccumulator {
  public:
   ModelAccumulator(std::string model, std::string domain);
@@ -58,10 +68,10 @@ class ModelAccumulator {
  private:
   std::string model_, domain_;
   int64_t files_ = 0, valid_ = 0, stubs_ = 0, invalid_ = 0, attempts_ = 0, successes_ = 0;
-  double alpha3_sum_ = 0.0;
+  CompensatedSum alpha3_sum_;
   double welford_mean_ = 0.0, welford_m2_ = 0.0;  // population variance of α³
-  PillarMeans pillar_sums_;
-  double gen_time_sum_s_ = 0.0, tokens_sum_ = 0.0;
+  CompensatedSum to_sum_, sp_sum_, tc_sum_, iq_sum_, nr_sum_, cc_sum_;
+  CompensatedSum gen_time_sum_s_, tokens_sum_;
 };
 
 }  // namespace a3::eval

@@ -4,7 +4,7 @@
 namespace a3::eval {
 
 std::string to_string(const Violation& v) {
-  return (v.json_path.empty() ? std::string("(file)") : v.json_path) + ": " + v.rule + ": " +
+  return (v.json_path.empty() ? std::string("(root)") : v.json_path) + ": " + v.rule + ": " +
          v.message;
 }
 

@@ -60,6 +60,7 @@ int run_validate(const ValidateArgs& args) {
                     << "\n";
         }
       });
+  std::cout.flush();
   for (const auto& warning : summary.warnings) std::cerr << "a3rig validate: warning: " << warning << "\n";
   std::cerr << "a3rig validate: " << summary.files << " files: " << valid << " valid episodes, "
             << stubs << " failure stubs, " << invalid << " invalid\n";
