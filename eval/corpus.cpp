@@ -1,6 +1,8 @@
 // Corpus discovery.
 #include "eval/corpus.hpp"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cctype>
 #include <stdexcept>
@@ -66,6 +68,18 @@ CorpusWalker::CorpusWalker(std::vector<fs::path> roots, CorpusOptions options)
 
 void CorpusWalker::push_directory(const fs::path& dir) {
   Frame frame;
+  struct stat info {};
+  if (::stat(dir.c_str(), &info) == 0) {
+    frame.device = static_cast<uint64_t>(info.st_dev);
+    frame.inode = static_cast<uint64_t>(info.st_ino);
+    for (const Frame& ancestor : stack_) {
+      if (ancestor.device == frame.device && ancestor.inode == frame.inode) {
+        warnings_.push_back(dir.string() + ": a folder loop (a symlink back to a folder above it): "
+                                           "not searched again");
+        return;
+      }
+    }
+  }
   std::error_code ec;
   // No skip_permission_denied: it would turn an unreadable folder into an empty one, unreported.
   fs::directory_iterator it(dir, ec);
@@ -113,12 +127,17 @@ std::optional<EpisodeFile> CorpusWalker::next() {
     std::error_code ec;
     // The entry's type comes from the folder listing; only symlinks need a stat.
     if (entry.is_directory(ec)) {
-      // Symlinked folders are followed; a link back up the tree would loop, so refuse depth > 64.
+      // Symlinked folders are followed (loops are refused in push_directory); depth is capped.
       if (stack_.size() < 64) {
         push_directory(path);
       } else {
         warnings_.push_back(path.string() + ": folder nesting deeper than 64, not searched");
       }
+      continue;
+    }
+    // A symlink whose target cannot be read (dangling, or a loop the kernel stops with ELOOP).
+    if (ec) {
+      warnings_.push_back(path.string() + ": cannot read: " + ec.message());
       continue;
     }
     if (!entry.is_regular_file(ec)) continue;

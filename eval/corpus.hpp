@@ -52,6 +52,7 @@ class CorpusWalker {
     std::vector<std::filesystem::directory_entry> entries;  // sorted by path
     std::size_t next = 0;
     std::string model, domain;  // attribution shared by the folder's files
+    uint64_t device = 0, inode = 0;  // identity, to refuse a symlink back to an ancestor
   };
   void push_directory(const std::filesystem::path& dir);
 

@@ -1,6 +1,8 @@
 // Semantic rules and fact extraction on a parsed episode.
 #include "eval/episode_document.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <string_view>
 
@@ -63,9 +65,11 @@ bool is_failure_stub(const rapidjson::Value& document) {
 int64_t attempts_used_or_one(const rapidjson::Value& document) {
   const Value* meta = member(document, "_meta");
   const Value* attempts = meta != nullptr ? member(*meta, "attempts_used") : nullptr;
-  if (attempts != nullptr && attempts->IsInt64() && attempts->GetInt64() >= 1) {
-    return attempts->GetInt64();
-  }
+  if (attempts == nullptr || !attempts->IsNumber()) return 1;
+  if (attempts->IsInt64()) return std::max<int64_t>(attempts->GetInt64(), 1);
+  // 2.0 is an integer for JSON Schema 2020-12 and for the schema's multipleOf 1.
+  const double value = attempts->GetDouble();
+  if (value >= 1.0 && value < 9.0e18 && std::floor(value) == value) return static_cast<int64_t>(value);
   return 1;
 }
 

@@ -8,6 +8,8 @@
 
 #include <cerrno>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 
 #include "eval/episode_document.hpp"
 #include "eval/utf8.hpp"
@@ -15,7 +17,7 @@
 namespace a3::eval {
 namespace {
 
-constexpr unsigned kParseFlags = rapidjson::kParseFullPrecisionFlag;
+constexpr unsigned kParseFlags = rapidjson::kParseInsituFlag | rapidjson::kParseFullPrecisionFlag;
 
 EpisodeCheck invalid(std::string rule, std::string message) {
   EpisodeCheck check;
@@ -78,18 +80,21 @@ EpisodeCheck EpisodeReader::check_file(const std::filesystem::path& path) {
     ::close(fd);
     return too_big(size);
   }
-  buffer_.resize(regular ? static_cast<std::size_t>(size) : std::size_t{64} << 10);
+  // One byte more than the text: the parser works in place and needs a terminating NUL.
+  std::size_t capacity = regular ? static_cast<std::size_t>(size) : std::size_t{64} << 10;
+  buffer_.resize(capacity + 1);
   std::size_t got = 0;
   while (true) {
-    if (got == buffer_.size()) {
+    if (got == capacity) {
       if (regular) break;
       if (got > max_file_bytes_) {
         ::close(fd);
         return too_big(got);
       }
-      buffer_.resize(buffer_.size() * 2);
+      capacity *= 2;
+      buffer_.resize(capacity + 1);
     }
-    const ssize_t n = ::read(fd, buffer_.data() + got, buffer_.size() - got);
+    const ssize_t n = ::read(fd, buffer_.data() + got, capacity - got);
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) {
       const std::string why = std::strerror(errno);
@@ -110,7 +115,10 @@ EpisodeCheck EpisodeReader::check_file(const std::filesystem::path& path) {
     return too_big(got);
   }
   ::close(fd);
-  return check_buffer(got);
+  return check_buffer(got, [&path] {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  });
 }
 
 EpisodeCheck EpisodeReader::too_big(std::uintmax_t size) const {
@@ -122,20 +130,29 @@ EpisodeCheck EpisodeReader::too_big(std::uintmax_t size) const {
 EpisodeCheck EpisodeReader::check_text(std::string_view text) {
   if (text.size() > max_file_bytes_) return too_big(text.size());
   buffer_.assign(text);
-  return check_buffer(text.size());
+  buffer_.push_back('\0');
+  return check_buffer(text.size(), [text] { return std::string(text); });
 }
 
-EpisodeCheck EpisodeReader::check_buffer(std::size_t size) {
+EpisodeCheck EpisodeReader::check_buffer(std::size_t size,
+                                         const std::function<std::string()>& original_text) {
   const std::string_view text(buffer_.data(), size);
   if (const auto bad = find_invalid_utf8(text)) {
     return invalid("json-syntax", "not UTF-8: invalid byte sequence at byte " + std::to_string(*bad));
   }
-  // The pool keeps its first chunk between files, so a typical episode parses without malloc.
+  if (std::memchr(text.data(), '\0', text.size()) != nullptr) {
+    return invalid("json-syntax", "a NUL byte outside a string: not JSON text");
+  }
+  buffer_[size] = '\0';
+  // The pool keeps its first chunk between files, so a typical episode parses without malloc;
+  // parsing in place saves copying every string.
   pool_.Clear();
   rapidjson::Document document(&pool_);
-  if (document.Parse<kParseFlags>(text.data(), text.size()).HasParseError()) {
-    return invalid("json-syntax",
-                   syntax_message(text, document.GetErrorOffset(), document.GetParseError()));
+  if (document.ParseInsitu<kParseFlags>(buffer_.data()).HasParseError()) {
+    // In-place parsing rewrote the buffer: count lines and columns on the original text.
+    const std::string original = original_text();
+    return invalid("json-syntax", syntax_message(original, document.GetErrorOffset(),
+                                                 document.GetParseError()));
   }
   EpisodeCheck check;
   check.attempts_used = attempts_used_or_one(document);

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -41,14 +42,16 @@ class EpisodeReader {
   EpisodeCheck check_text(std::string_view text);
 
  private:
-  EpisodeCheck check_buffer(std::size_t size);
+  // buffer_ holds `size` bytes of text and room for a NUL; original_text() gives the text
+  // back when a syntax error has to be located (the parser rewrites the buffer).
+  EpisodeCheck check_buffer(std::size_t size, const std::function<std::string()>& original_text);
   EpisodeCheck too_big(std::uintmax_t size) const;
 
   const JsonSchemaValidator& validator_;
   const ScoringProfile& profile_;
   std::uintmax_t max_file_bytes_;
   static constexpr std::size_t kPoolChunkBytes = 256u << 10;
-  std::string buffer_;  // the file's bytes
+  std::string buffer_;  // the file's bytes, parsed in place
   std::vector<char> pool_chunk_;
   rapidjson::MemoryPoolAllocator<> pool_;  // the parsed document's memory
 };

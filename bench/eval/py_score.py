@@ -2,7 +2,7 @@
 """Reference α³ scorer in plain Python (SPEC §2/§3), used to cross-check the C++
 scorer (eval/) and as the baseline of the scoring benchmark. Validation uses
 jsonschema.Draft202012Validator with eval/schema/episode.schema.json plus the same
-semantic rules as eval/semantic_checks.cpp.
+semantic rules as eval/episode_document.cpp.
 
 usage: py_score.py [--no-validate] [--profile release|paper] [--budget N]
                    [--model NAME] [--domain NAME] [--per-episode FILE.jsonl] DIR...
@@ -169,8 +169,8 @@ def load(path, validator):
         return "invalid", None, 1
     if isinstance(ep, dict) and isinstance(ep.get("_meta"), dict):
         a = ep["_meta"].get("attempts_used")
-        if isinstance(a, int) and not isinstance(a, bool) and a >= 1:
-            attempts = a
+        if isinstance(a, (int, float)) and not isinstance(a, bool) and a >= 1 and a == int(a):
+            attempts = int(a)
     if validator is not None and not validator.is_valid(ep):
         return "invalid", None, attempts
     if ep["_meta"].get("generation_failed") is True:
