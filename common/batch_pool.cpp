@@ -28,7 +28,7 @@ void BatchPool::drain(std::size_t worker) {
       std::lock_guard<std::mutex> lock(mutex_);
       if (next_item_ >= count_) return;
       item = next_item_++;
-      fn = fn_;
+      fn = &fn_;
     }
     (*fn)(item, worker);
   }
@@ -53,19 +53,26 @@ void BatchPool::work(std::size_t worker) {
   }
 }
 
-void BatchPool::run(std::size_t count, const ItemFn& fn) {
+void BatchPool::start(std::size_t count, ItemFn fn) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    fn_ = &fn;
+    fn_ = std::move(fn);
     count_ = count;
     next_item_ = 0;
     ++generation_;
   }
   start_cv_.notify_all();
+}
+
+void BatchPool::finish() {
   drain(0);
   std::unique_lock<std::mutex> lock(mutex_);
   done_cv_.wait(lock, [&] { return busy_workers_ == 0 && next_item_ >= count_; });
-  fn_ = nullptr;
+}
+
+void BatchPool::run(std::size_t count, ItemFn fn) {
+  start(count, std::move(fn));
+  finish();
 }
 
 }  // namespace a3::common

@@ -1,8 +1,9 @@
 // A fixed pool of worker threads that runs one batch of independent items at a time:
-// run(count, fn) calls fn(item, worker) for every item in [0, count) on all workers (the
-// calling thread is worker 0) and returns when the batch is done. Callers consume the batch's
-// results in item order afterwards, so output stays deterministic and memory stays bounded
-// by the batch size.
+// fn(item, worker) is called for every item in [0, count). The calling thread is worker 0: it
+// may start() a batch, do other work (read the next batch, consume the previous one) while the
+// other workers begin, then finish() helps with what is left and returns when the batch is
+// done. Callers consume a batch's results in item order afterwards, so output stays
+// deterministic and memory stays bounded by the batch size.
 #pragma once
 
 #include <condition_variable>
@@ -27,8 +28,14 @@ class BatchPool {
 
   std::size_t workers() const { return threads_.size() + 1; }
 
-  // Runs fn over [0, count). fn must not throw (catch inside; a thrown exception terminates).
-  void run(std::size_t count, const ItemFn& fn);
+  // Runs fn over [0, count) and returns when done. fn must not throw (catch inside; a thrown
+  // exception terminates).
+  void run(std::size_t count, ItemFn fn);
+  // The same in two steps: start() hands the batch to the other workers and returns at once;
+  // finish() works on it as worker 0 and returns when every item is done. A batch must be
+  // finished before the next one starts.
+  void start(std::size_t count, ItemFn fn);
+  void finish();
 
  private:
   void work(std::size_t worker);
@@ -37,7 +44,7 @@ class BatchPool {
   std::vector<std::thread> threads_;
   std::mutex mutex_;
   std::condition_variable start_cv_, done_cv_;
-  const ItemFn* fn_ = nullptr;
+  ItemFn fn_;
   std::size_t count_ = 0;
   std::size_t next_item_ = 0;
   std::size_t busy_workers_ = 0;

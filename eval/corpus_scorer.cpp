@@ -1,5 +1,5 @@
-// The scoring pipeline: walker → batch of files → threads (read, validate, extract, score) →
-// in-order aggregation.
+// The scoring pipeline: walker → batches of files → threads (read, validate, extract, score) →
+// in-order aggregation, with listing and aggregation overlapped with the checking.
 #include "eval/corpus_scorer.hpp"
 
 #include <algorithm>
@@ -40,23 +40,35 @@ struct Pass {
       readers.push_back(std::make_unique<EpisodeReader>(validator, profile, max_file_bytes));
     }
     CorpusWalker walker(roots, corpus);
-    std::vector<EpisodeFile> files;
-    std::vector<Result> results;
-    files.reserve(kBatchFiles);
-    while (true) {
-      files.clear();
-      while (files.size() < kBatchFiles) {
+    // Two batches in flight: while the workers check batch `cur`, this thread lists the next
+    // one; it then helps finish `cur`, starts `next`, and consumes `cur` while `next` runs.
+    std::vector<EpisodeFile> files[2];
+    std::vector<Result> results[2];
+    auto list_batch = [&](int k) {
+      files[k].clear();
+      while (files[k].size() < kBatchFiles) {
         auto file = walker.next();
         if (!file) break;
-        files.push_back(std::move(*file));
+        files[k].push_back(std::move(*file));
       }
-      if (files.empty()) break;
-      results.assign(files.size(), Result{});
-      pool.run(files.size(), [&](std::size_t i, std::size_t worker) {
-        results[i] = per_file(*readers[worker], files[i]);
+      results[k].assign(files[k].size(), Result{});
+    };
+    auto start_batch = [&](int k) {
+      pool.start(files[k].size(), [&, k](std::size_t i, std::size_t worker) {
+        results[k][i] = per_file(*readers[worker], files[k][i]);
       });
-      for (std::size_t i = 0; i < files.size(); ++i) in_order(files[i], results[i]);
+    };
+    int cur = 0;
+    list_batch(cur);
+    if (!files[cur].empty()) start_batch(cur);
+    while (!files[cur].empty()) {
+      const int next = 1 - cur;
+      list_batch(next);
+      pool.finish();
+      if (!files[next].empty()) start_batch(next);
+      for (std::size_t i = 0; i < files[cur].size(); ++i) in_order(files[cur][i], results[cur][i]);
       after_batch();
+      cur = next;
     }
     if (warnings != nullptr) *warnings = walker.warnings();
     if (ignored_json != nullptr) *ignored_json = walker.ignored_json_files();

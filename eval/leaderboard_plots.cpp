@@ -52,7 +52,7 @@ std::string script(const fs::path& dir) {
      << "set title 'Mean α³ per model (error bar: 95 % interval)'\nset ylabel 'mean α³'\n"
      << "set yrange [0:1.05]\n"
      << "plot " << data << " using 0:3:xtic(1) with boxes lc rgb '#4C72B0', '' using 0:3:4 "
-     << "with yerrorbars lc rgb 'black' pt -1\n"
+     << "with yerrorbars lc rgb 'black' lw 1.5 pt 7 ps 0.4\n"
      // 2: α³_rel
      << "set output " << out("alpha3_rel.png") << "\n"
      << "set title 'Reliability-adjusted α³_rel per model'\nset ylabel 'α³_rel'\n"

@@ -8,7 +8,7 @@ file copied under new episode numbers), then times:
   - the Python reference scorer bench/eval/py_score.py without validation, and with
     jsonschema.Draft202012Validator validation;
 and reports episodes/s, MB/s, the ratio, and peak resident memory for two corpus sizes
-(memory must not grow with the number of episodes).
+(N and 4N: memory must not grow with the number of episodes).
 
 usage: bench/eval/score_throughput.py [--build DIR] [--files N] [--repeat K] [--work DIR]
                                       [--python-files N]
@@ -42,7 +42,11 @@ def replicate(dst, n_files):
             sc = os.path.basename(f).split("-")[1]
             d = os.path.join(dst, rel)
             os.makedirs(d, exist_ok=True)
-            shutil.copyfile(f, os.path.join(d, "sc-%s-ep-%03d.json" % (sc, ep)))
+            dst_file = os.path.join(d, "sc-%s-ep-%04d.json" % (sc, ep))
+            try:
+                os.link(f, dst_file)  # hard links: a 40k-file corpus costs no disk
+            except OSError:
+                shutil.copyfile(f, dst_file)
             made += 1
     return made
 
@@ -87,8 +91,8 @@ def main():
     if not os.access(a3rig, os.X_OK):
         sys.exit("build a3rig first (scripts/setup.sh): %s" % a3rig)
     work = args.work or tempfile.mkdtemp(prefix="a3rig-bench-")
-    big, small, pyc = (os.path.join(work, d) for d in ("big", "small", "python"))
-    for d, n in ((big, args.files), (small, max(args.files // 4, 200)), (pyc, args.python_files)):
+    big, huge, pyc = (os.path.join(work, d) for d in ("big", "huge", "python"))
+    for d, n in ((big, args.files), (huge, 4 * args.files), (pyc, args.python_files)):
         if not os.path.isdir(d):
             replicate(d, n)
     n_big = sum(1 for _ in glob.iglob(os.path.join(big, "*", "*", "*", "*.json")))
@@ -118,10 +122,10 @@ def main():
     print("ratio a3rig (2 threads, validating) / python (validating):   %.0fx" % (results[2] / py_valid))
     print("ratio a3rig (2 threads, validating) / python (no validation): %.1fx" % (results[2] / py_plain))
 
-    n_small = sum(1 for _ in glob.iglob(os.path.join(small, "*", "*", "*", "*.json")))
-    rss_small = peak_rss_mib([a3rig, "score", "-q", "--format", "csv", small])
+    n_huge = sum(1 for _ in glob.iglob(os.path.join(huge, "*", "*", "*", "*.json")))
     rss_big = peak_rss_mib([a3rig, "score", "-q", "--format", "csv", big])
-    print("peak memory: %.1f MiB for %d files, %.1f MiB for %d files" % (rss_small, n_small, rss_big, n_big))
+    rss_huge = peak_rss_mib([a3rig, "score", "-q", "--format", "csv", huge])
+    print("peak memory: %.1f MiB for %d files, %.1f MiB for %d files" % (rss_big, n_big, rss_huge, n_huge))
     if not args.work:
         shutil.rmtree(work)
 
