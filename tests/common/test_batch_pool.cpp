@@ -64,3 +64,40 @@ TEST(BatchPool, ZeroMeansOneWorkerPerHardwareThread) {
 
 }  // namespace
 }  // namespace a3::common
+
+namespace a3::common {
+namespace {
+
+TEST(BatchPool, StartReturnsAtOnceAndFinishCompletesTheBatch) {
+  BatchPool pool(2);
+  for (int batch = 0; batch < 50; ++batch) {
+    std::vector<std::atomic<int>> runs(100);
+    std::atomic<int> done{0};
+    pool.start(100, [&](std::size_t item, std::size_t) {
+      runs[item].fetch_add(1);
+      done.fetch_add(1);
+    });
+    // The caller is free until finish(): the other worker may already be on the batch.
+    int caller_work = 0;
+    for (int i = 0; i < 1000; ++i) caller_work += i % 7;
+    pool.finish();
+    EXPECT_EQ(done.load(), 100);
+    for (auto& r : runs) EXPECT_EQ(r.load(), 1);
+    EXPECT_GT(caller_work, 0);
+  }
+}
+
+TEST(BatchPool, AStartedBatchRunsWithoutTheCaller) {
+  BatchPool pool(2);
+  std::atomic<int> done{0};
+  pool.start(3, [&](std::size_t, std::size_t worker) {
+    EXPECT_EQ(worker, 1u);  // the caller is sleeping: only worker 1 can take items
+    done.fetch_add(1);
+  });
+  for (int i = 0; i < 2000 && done.load() < 3; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  EXPECT_EQ(done.load(), 3);
+  pool.finish();
+}
+
+}  // namespace
+}  // namespace a3::common
