@@ -16,13 +16,18 @@
 #include <vector>
 
 #include "a3lcm/actuator_cmd_t.hpp"
+#include "a3lcm/edge_compute_reply_t.hpp"
+#include "a3lcm/edge_compute_request_t.hpp"
 #include "a3lcm/episode_event_t.hpp"
 #include "a3lcm/fc_command_t.hpp"
 #include "a3lcm/fc_status_t.hpp"
 #include "a3lcm/link_message_t.hpp"
+#include "a3lcm/link_record_t.hpp"
 #include "a3lcm/network_state_t.hpp"
 #include "a3lcm/safety_event_t.hpp"
 #include "a3lcm/sim_clock_t.hpp"
+#include "a3lcm/slice_switch_reply_t.hpp"
+#include "a3lcm/slice_switch_request_t.hpp"
 #include "a3lcm/vehicle_state_t.hpp"
 #include "tests/test_support.hpp"
 
@@ -295,11 +300,155 @@ struct Case<a3lcm::vehicle_state_t> {
   }
 };
 
+template <>
+struct Case<a3lcm::link_record_t> {
+  static a3lcm::link_record_t make() {
+    a3lcm::link_record_t m;
+    m.utime_us = kBigTime + 21;
+    m.direction = "down";
+    m.message_id = -(kBigTime + 2);
+    m.sender = "tool_server";
+    m.kind = "image";
+    m.sent_utime_us = kBigTime + 20;
+    m.size_bytes = int64_t{5} << 32;  // does not fit in 32 bits
+    m.outcome = a3lcm::link_record_t::DROPPED;
+    m.drop_reason = "queue_full: backlog 61.2 s > 60 s";
+    m.delivery_utime_us = -1;
+    m.queue_ms = 1234.5;
+    m.serialization_ms = 17391.304;
+    m.latency_ms = 1.0 / 3.0;
+    m.slice = "mMTC";
+    m.net_lat_ms = 150.125;
+    m.net_jitter_ms = 17.5;
+    m.net_loss_pct = 2.375;
+    m.net_throughput_mbps = 2.3;
+    m.net_edge_load = 0.875;
+    m.net_degraded = true;
+    return m;
+  }
+  static void expect_equal(const a3lcm::link_record_t& a, const a3lcm::link_record_t& b) {
+    EXPECT_EQ(a.utime_us, b.utime_us);
+    EXPECT_EQ(a.direction, b.direction);
+    EXPECT_EQ(a.message_id, b.message_id);
+    EXPECT_EQ(a.sender, b.sender);
+    EXPECT_EQ(a.kind, b.kind);
+    EXPECT_EQ(a.sent_utime_us, b.sent_utime_us);
+    EXPECT_EQ(a.size_bytes, b.size_bytes);
+    EXPECT_EQ(a.outcome, b.outcome);
+    EXPECT_EQ(a.drop_reason, b.drop_reason);
+    EXPECT_EQ(a.delivery_utime_us, b.delivery_utime_us);
+    EXPECT_SAME_DOUBLE(a.queue_ms, b.queue_ms);
+    EXPECT_SAME_DOUBLE(a.serialization_ms, b.serialization_ms);
+    EXPECT_SAME_DOUBLE(a.latency_ms, b.latency_ms);
+    EXPECT_EQ(a.slice, b.slice);
+    EXPECT_SAME_DOUBLE(a.net_lat_ms, b.net_lat_ms);
+    EXPECT_SAME_DOUBLE(a.net_jitter_ms, b.net_jitter_ms);
+    EXPECT_SAME_DOUBLE(a.net_loss_pct, b.net_loss_pct);
+    EXPECT_SAME_DOUBLE(a.net_throughput_mbps, b.net_throughput_mbps);
+    EXPECT_SAME_DOUBLE(a.net_edge_load, b.net_edge_load);
+    EXPECT_EQ(a.net_degraded, b.net_degraded);
+  }
+};
+
+template <>
+struct Case<a3lcm::edge_compute_request_t> {
+  static a3lcm::edge_compute_request_t make() {
+    a3lcm::edge_compute_request_t m;
+    m.utime_us = kBigTime + 23;
+    m.request_id = kBigTime * 5 + 1;
+    m.requester = "agent";
+    m.work_ms = 7400.125;
+    return m;
+  }
+  static void expect_equal(const a3lcm::edge_compute_request_t& a,
+                           const a3lcm::edge_compute_request_t& b) {
+    EXPECT_EQ(a.utime_us, b.utime_us);
+    EXPECT_EQ(a.request_id, b.request_id);
+    EXPECT_EQ(a.requester, b.requester);
+    EXPECT_SAME_DOUBLE(a.work_ms, b.work_ms);
+  }
+};
+
+template <>
+struct Case<a3lcm::edge_compute_reply_t> {
+  static a3lcm::edge_compute_reply_t make() {
+    a3lcm::edge_compute_reply_t m;
+    m.utime_us = kBigTime + 25;
+    m.request_id = kBigTime * 5 + 1;
+    m.requester = "agent";
+    m.work_ms = 7400.125;
+    m.delay_ms = 37000.625;
+    m.edge_load = 0.8;
+    m.slice = "eMBB";
+    m.error = "work_ms must be a finite number >= 0, got -1";
+    return m;
+  }
+  static void expect_equal(const a3lcm::edge_compute_reply_t& a,
+                           const a3lcm::edge_compute_reply_t& b) {
+    EXPECT_EQ(a.utime_us, b.utime_us);
+    EXPECT_EQ(a.request_id, b.request_id);
+    EXPECT_EQ(a.requester, b.requester);
+    EXPECT_SAME_DOUBLE(a.work_ms, b.work_ms);
+    EXPECT_SAME_DOUBLE(a.delay_ms, b.delay_ms);
+    EXPECT_SAME_DOUBLE(a.edge_load, b.edge_load);
+    EXPECT_EQ(a.slice, b.slice);
+    EXPECT_EQ(a.error, b.error);
+  }
+};
+
+template <>
+struct Case<a3lcm::slice_switch_request_t> {
+  static a3lcm::slice_switch_request_t make() {
+    a3lcm::slice_switch_request_t m;
+    m.utime_us = kBigTime + 27;
+    m.request_id = -3;
+    m.requester = "tool_server";
+    m.slice = "URLLC";
+    return m;
+  }
+  static void expect_equal(const a3lcm::slice_switch_request_t& a,
+                           const a3lcm::slice_switch_request_t& b) {
+    EXPECT_EQ(a.utime_us, b.utime_us);
+    EXPECT_EQ(a.request_id, b.request_id);
+    EXPECT_EQ(a.requester, b.requester);
+    EXPECT_EQ(a.slice, b.slice);
+  }
+};
+
+template <>
+struct Case<a3lcm::slice_switch_reply_t> {
+  static a3lcm::slice_switch_reply_t make() {
+    a3lcm::slice_switch_reply_t m;
+    m.utime_us = kBigTime + 29;
+    m.request_id = -3;
+    m.requester = "tool_server";
+    m.accepted = true;
+    m.reason = "superseded a pending switch to mMTC";
+    m.from_slice = "eMBB";
+    m.to_slice = "URLLC";
+    m.effective_utime_us = kBigTime + 100029;
+    return m;
+  }
+  static void expect_equal(const a3lcm::slice_switch_reply_t& a,
+                           const a3lcm::slice_switch_reply_t& b) {
+    EXPECT_EQ(a.utime_us, b.utime_us);
+    EXPECT_EQ(a.request_id, b.request_id);
+    EXPECT_EQ(a.requester, b.requester);
+    EXPECT_EQ(a.accepted, b.accepted);
+    EXPECT_EQ(a.reason, b.reason);
+    EXPECT_EQ(a.from_slice, b.from_slice);
+    EXPECT_EQ(a.to_slice, b.to_slice);
+    EXPECT_EQ(a.effective_utime_us, b.effective_utime_us);
+  }
+};
+
 // The types with a round-trip case: add a new type here and a Case<> above.
 using AllTypesTuple =
-    std::tuple<a3lcm::actuator_cmd_t, a3lcm::episode_event_t, a3lcm::fc_command_t,
-               a3lcm::fc_status_t, a3lcm::link_message_t, a3lcm::network_state_t,
-               a3lcm::safety_event_t, a3lcm::sim_clock_t, a3lcm::vehicle_state_t>;
+    std::tuple<a3lcm::actuator_cmd_t, a3lcm::edge_compute_reply_t, a3lcm::edge_compute_request_t,
+               a3lcm::episode_event_t, a3lcm::fc_command_t, a3lcm::fc_status_t,
+               a3lcm::link_message_t, a3lcm::link_record_t, a3lcm::network_state_t,
+               a3lcm::safety_event_t, a3lcm::sim_clock_t, a3lcm::slice_switch_reply_t,
+               a3lcm::slice_switch_request_t, a3lcm::vehicle_state_t>;
 
 template <typename Tuple>
 struct GtestTypes;
