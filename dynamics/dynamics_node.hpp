@@ -1,0 +1,86 @@
+// The dynamics node: subscribes to rotor commands (A3_ACTUATORS, actuator_cmd_t), integrates the
+// vehicle on a fixed publish grid (100 Hz by default) with the command held between steps, and
+// publishes the true state (A3_STATE, vehicle_state_t) and crashes (A3_SAFETY). The same object
+// runs in real time (its own thread or process) and in virtual time (the scheduler).
+//
+// Input checking, as an ESC would do it: a command with a NaN or infinite throttle is rejected
+// (counted, logged); a throttle outside [0, 1] is clamped (counted, logged); with no command for
+// longer than the timeout (0.5 s by default) the motors spin down; the node keeps publishing.
+// Until the first command arrives the rotors hold the initial state's speeds (for the timeout).
+// Steps fall on a grid of whole periods of the clock (k · period), in both runtimes.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "a3lcm/actuator_cmd_t.hpp"
+#include "common/node.hpp"
+#include "dynamics/integrator.hpp"
+
+namespace a3::dynamics {
+
+struct DynamicsNodeConfig {
+  VehicleParams params = default_vehicle_params();  // payloads included
+  IntegratorKind integrator = IntegratorKind::kCvode;
+  IntegratorOptions integrator_options;
+  double publish_rate_hz = 100.0;
+  double command_timeout_s = 0.5;
+  VehicleState initial_state;  // at or below z = 0: on the ground
+  Eigen::Vector3d mean_wind_W_mps = Eigen::Vector3d::Zero();
+  TurbulenceParams turbulence;
+  uint64_t seed = 1;
+  std::string state_channel;     // default: A3_STATE
+  std::string actuator_channel;  // default: A3_ACTUATORS
+  std::string safety_channel;    // default: A3_SAFETY
+};
+
+class DynamicsNode final : public common::Node {
+ public:
+  explicit DynamicsNode(DynamicsNodeConfig config);
+  ~DynamicsNode() override;
+
+  std::string name() const override { return "dynamics"; }
+  void start(common::Executor& executor, common::Bus& bus) override;
+
+  struct Counters {
+    uint64_t steps = 0;
+    uint64_t commands_received = 0;
+    uint64_t commands_rejected = 0;  // NaN or infinite throttle
+    uint64_t commands_clamped = 0;   // throttle outside [0, 1]
+    uint64_t stale_steps = 0;        // steps run with the motors spun down for lack of commands
+    uint64_t integration_errors = 0;
+  };
+  // Safe from any thread.
+  Counters counters() const;
+  // Read only from the node's own thread (or after it stopped).
+  const Integrator& integrator() const { return *integrator_; }
+  const QuadrotorModel& model() const { return *model_; }
+
+ private:
+  void on_command(const a3lcm::actuator_cmd_t& cmd, int64_t recv_utime_us);
+  void step();
+  void publish_state(int64_t utime_us);
+  void publish_events(int64_t utime_us);
+  void warn(uint64_t count, const std::string& message) const;
+
+  DynamicsNodeConfig config_;
+  std::unique_ptr<QuadrotorModel> model_;
+  std::unique_ptr<WindField> wind_;
+  std::unique_ptr<Integrator> integrator_;
+  common::Executor* executor_ = nullptr;
+  common::Bus* bus_ = nullptr;
+  int64_t period_us_ = 10000;
+  int64_t start_us_ = 0;
+  uint64_t step_index_ = 0;
+  RotorSpeeds command_radps_{};
+  std::optional<int64_t> last_command_us_;
+  struct AtomicCounters {
+    std::atomic<uint64_t> steps{0}, commands_received{0}, commands_rejected{0},
+        commands_clamped{0}, stale_steps{0}, integration_errors{0};
+  } counters_;
+};
+
+}  // namespace a3::dynamics
