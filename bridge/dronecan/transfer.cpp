@@ -1,0 +1,110 @@
+// DroneCAN identifiers, tail bytes and frame splitting (see transfer.hpp).
+#include "bridge/dronecan/transfer.hpp"
+
+#include <algorithm>
+
+#include "bridge/dronecan/crc.hpp"
+
+namespace a3::bridge {
+
+uint32_t make_can_id(const TransferHeader& h) {
+  const uint32_t priority = static_cast<uint32_t>(h.priority & 0x1F) << 24;
+  const uint32_t source = h.source_node_id & 0x7F;
+  if (h.kind == TransferKind::kMessage) {
+    if (source == 0) {  // anonymous: discriminator 0, two low bits of the type ID
+      return priority | (static_cast<uint32_t>(h.data_type_id & 0x3) << 8);
+    }
+    return priority | (static_cast<uint32_t>(h.data_type_id) << 8) | source;
+  }
+  const uint32_t request = h.kind == TransferKind::kRequest ? 1u << 15 : 0u;
+  return priority | (static_cast<uint32_t>(h.data_type_id & 0xFF) << 16) | request |
+         (static_cast<uint32_t>(h.destination_node_id & 0x7F) << 8) | (1u << 7) | source;
+}
+
+TransferHeader parse_can_id(uint32_t id, bool* anonymous) {
+  TransferHeader h;
+  h.priority = static_cast<uint8_t>((id >> 24) & 0x1F);
+  h.source_node_id = static_cast<uint8_t>(id & 0x7F);
+  const bool service = (id & (1u << 7)) != 0;
+  bool is_anonymous = false;
+  if (!service) {
+    h.kind = TransferKind::kMessage;
+    if (h.source_node_id == 0) {
+      is_anonymous = true;
+      h.data_type_id = static_cast<uint16_t>((id >> 8) & 0x3);
+    } else {
+      h.data_type_id = static_cast<uint16_t>((id >> 8) & 0xFFFF);
+    }
+  } else {
+    h.kind = (id & (1u << 15)) != 0 ? TransferKind::kRequest : TransferKind::kResponse;
+    h.data_type_id = static_cast<uint16_t>((id >> 16) & 0xFF);
+    h.destination_node_id = static_cast<uint8_t>((id >> 8) & 0x7F);
+  }
+  if (anonymous != nullptr) *anonymous = is_anonymous;
+  return h;
+}
+
+std::string check_header(const TransferHeader& h) {
+  if (h.priority > 31) return "priority " + std::to_string(h.priority) + " > 31";
+  if (h.source_node_id > kMaxNodeId) {
+    return "source node ID " + std::to_string(h.source_node_id) + " > 127";
+  }
+  if (h.transfer_id >= kTransferIdModulo) {
+    return "transfer ID " + std::to_string(h.transfer_id) + " > 31";
+  }
+  if (h.kind != TransferKind::kMessage) {
+    if (h.data_type_id > 255) {
+      return "service type ID " + std::to_string(h.data_type_id) + " > 255";
+    }
+    if (h.source_node_id == 0) return "a service transfer needs a source node ID";
+    if (h.destination_node_id == 0 || h.destination_node_id > kMaxNodeId) {
+      return "service destination node ID " + std::to_string(h.destination_node_id) +
+             " not in 1..127";
+    }
+  }
+  return "";
+}
+
+std::size_t transfer_frame_count(std::size_t payload_size) {
+  if (payload_size <= 7) return 1;
+  return (payload_size + 2 + 6) / 7;
+}
+
+void append_transfer_frames(const TransferHeader& header, uint64_t data_type_signature,
+                            const uint8_t* payload, std::size_t size,
+                            std::vector<CanFrame>& out) {
+  CanFrame frame;
+  frame.id = make_can_id(header);
+  frame.extended = true;
+  TailByte tail{true, false, false, static_cast<uint8_t>(header.transfer_id & 0x1F)};
+  if (size <= 7) {
+    std::copy(payload, payload + size, frame.data.begin());
+    tail.end_of_transfer = true;
+    frame.data[size] = tail.pack();
+    frame.size = static_cast<uint8_t>(size + 1);
+    out.push_back(frame);
+    return;
+  }
+  const uint16_t crc = transfer_crc(data_type_signature, payload, size);
+  // The CRC travels as the first two bytes of the stream, low byte first.
+  std::size_t offset = 0;  // in the stream CRC + payload
+  const std::size_t stream_size = size + 2;
+  while (offset < stream_size) {
+    const std::size_t chunk = std::min<std::size_t>(7, stream_size - offset);
+    for (std::size_t i = 0; i < chunk; ++i) {
+      const std::size_t at = offset + i;
+      frame.data[i] = at == 0   ? static_cast<uint8_t>(crc & 0xFF)
+                      : at == 1 ? static_cast<uint8_t>(crc >> 8)
+                                : payload[at - 2];
+    }
+    offset += chunk;
+    tail.end_of_transfer = offset == stream_size;
+    frame.data[chunk] = tail.pack();
+    frame.size = static_cast<uint8_t>(chunk + 1);
+    out.push_back(frame);
+    tail.start_of_transfer = false;
+    tail.toggle = !tail.toggle;
+  }
+}
+
+}  // namespace a3::bridge

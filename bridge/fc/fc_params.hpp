@@ -1,0 +1,71 @@
+// Flight-controller parameters: what the autopilot knows of its vehicle (for the mixer and the
+// thrust model), control gains, limits and failsafe thresholds. Loaded from JSON; every field
+// has a documented default (bridge/fc/README.md), the vehicle section defaults to the 3DR Iris.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+
+#include "bridge/fc/geofence.hpp"
+
+namespace a3::bridge {
+
+struct FcVehicle {
+  double mass_kg = 1.5;
+  double arm_length_m = 0.255;
+  double thrust_coeff_N_per_radps2 = 5.84e-6;
+  double torque_coeff_Nm_per_radps2 = 3.504e-7;
+  double max_rotor_speed_radps = 1100.0;
+  double inertia_xx_kgm2 = 0.029125, inertia_yy_kgm2 = 0.029125, inertia_zz_kgm2 = 0.055225;
+};
+
+struct FcGains {
+  double position_p = 0.9;        // 1/s: velocity setpoint per metre of position error
+  double velocity_p = 2.5;        // 1/s: acceleration per m/s of velocity error
+  double velocity_i = 0.6;        // 1/s²
+  double attitude_p = 7.0;        // 1/s: body-rate setpoint per radian of attitude error
+  double yaw_p = 2.5;             // 1/s
+  double rate_p = 20.0;           // 1/s: angular acceleration per rad/s of rate error
+  double rate_i = 4.0;            // 1/s²
+};
+
+struct FcLimits {
+  double max_horizontal_speed_mps = 12.0;
+  double max_climb_speed_mps = 3.0;
+  double max_descent_speed_mps = 2.0;
+  double max_horizontal_accel_mps2 = 4.0;
+  double max_tilt_deg = 30.0;
+  double max_rate_radps = 3.0;
+  double max_yaw_rate_radps = 1.5;
+  double takeoff_speed_mps = 2.0;
+  double land_speed_mps = 0.7;
+  double brake_accel_mps2 = 2.5;    // how hard it may brake before a geofence edge
+  double default_speed_mps = 5.0;   // go-to speed when a command gives none
+};
+
+struct FcFailsafe {
+  double link_loss_hold_s = 3.0;    // no command heartbeat this long: hold
+  double link_loss_return_s = 10.0; // still none this much longer: return home
+  double low_battery_return_pct = 25.0;
+  double low_battery_land_pct = 12.0;
+  double fence_margin_m = 5.0;      // targets must stay this far inside the geofence
+  double return_altitude_m = 30.0;  // minimum altitude of the return leg
+};
+
+struct FcParams {
+  FcVehicle vehicle;
+  FcGains gains;
+  FcLimits limits;
+  FcFailsafe failsafe;
+  Geofence fence;               // from the scenario; unbounded by default
+  double control_rate_hz = 250.0;
+  double status_rate_hz = 10.0;
+};
+
+// Reads the sections present in `j` over the defaults; `where` names the source in errors.
+FcParams fc_params_from_json(const nlohmann::json& j, const std::string& where, FcParams base = {});
+FcParams load_fc_params(const std::filesystem::path& path);
+
+}  // namespace a3::bridge
