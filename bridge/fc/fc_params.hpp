@@ -45,7 +45,7 @@ struct FcLimits {
   double default_speed_mps = 5.0;   // go-to speed when a command gives none
 };
 
-struct FcFailsafe {
+struct FcFailsafeParams {
   double link_loss_hold_s = 3.0;    // no command heartbeat this long: hold
   double link_loss_return_s = 10.0; // still none this much longer: return home
   double low_battery_return_pct = 25.0;
@@ -58,7 +58,7 @@ struct FcParams {
   FcVehicle vehicle;
   FcGains gains;
   FcLimits limits;
-  FcFailsafe failsafe;
+  FcFailsafeParams failsafe;
   Geofence fence;               // from the scenario; unbounded by default
   double control_rate_hz = 250.0;
   double status_rate_hz = 10.0;

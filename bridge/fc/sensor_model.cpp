@@ -1,0 +1,63 @@
+// Simulated sensors.
+#include "bridge/fc/sensor_model.hpp"
+
+#include <cmath>
+
+#include "bridge/fc/state_estimator.hpp"
+
+namespace a3::bridge {
+namespace {
+
+constexpr double kSeaLevelPressure_Pa = 101325.0;
+constexpr double kSeaLevelTemperature_K = 288.15;
+constexpr double kLapseRate_Kpm = 0.0065;
+constexpr double kExponent = 5.25588;  // g M / (R L)
+
+Eigen::Vector3d noise3(common::Rng& rng, double sigma) {
+  return {sigma * rng.normal(), sigma * rng.normal(), sigma * rng.normal()};
+}
+
+}  // namespace
+
+double isa_pressure_Pa(double h) {
+  return kSeaLevelPressure_Pa * std::pow(1.0 - kLapseRate_Kpm * h / kSeaLevelTemperature_K, kExponent);
+}
+
+double isa_altitude_m(double p) {
+  return kSeaLevelTemperature_K / kLapseRate_Kpm * (1.0 - std::pow(p / kSeaLevelPressure_Pa, 1.0 / kExponent));
+}
+
+double isa_temperature_K(double h) { return kSeaLevelTemperature_K - kLapseRate_Kpm * h; }
+
+SensorModel::SensorModel(SensorNoise noise, uint64_t seed)
+    : noise_(noise),
+      imu_(common::RngStreams(seed).stream("sensors.imu")),
+      gnss_(common::RngStreams(seed).stream("sensors.gnss")),
+      baro_(common::RngStreams(seed).stream("sensors.baro")),
+      mag_(common::RngStreams(seed).stream("sensors.mag")) {}
+
+Eigen::Vector3d SensorModel::gyro_B_radps(const TruthSample& t) { return t.w_B_radps + noise3(imu_, noise_.gyro_radps); }
+
+Eigen::Vector3d SensorModel::accel_B_mps2(const TruthSample& t) {
+  return t.specific_force_B_mps2 + noise3(imu_, noise_.accel_mps2);
+}
+
+Eigen::Vector3d SensorModel::gnss_position_W_m(const TruthSample& t) {
+  return t.p_W_m + Eigen::Vector3d(noise_.gnss_horizontal_m * gnss_.normal(), noise_.gnss_horizontal_m * gnss_.normal(),
+                                   noise_.gnss_vertical_m * gnss_.normal());
+}
+
+Eigen::Vector3d SensorModel::gnss_velocity_W_mps(const TruthSample& t) {
+  return t.v_W_mps + noise3(gnss_, noise_.gnss_velocity_mps);
+}
+
+double SensorModel::static_pressure_Pa(const TruthSample& t, double home_msl_m) {
+  return isa_pressure_Pa(home_msl_m + t.p_W_m.z()) + noise_.baro_pressure_Pa * baro_.normal();
+}
+
+Eigen::Vector3d SensorModel::magnetic_field_B_gauss(const TruthSample& t) {
+  const Eigen::Vector3d field_W = kEarthFieldGauss * earth_field_direction_W();
+  return t.q_WB.conjugate() * field_W + noise3(mag_, noise_.mag_gauss);
+}
+
+}  // namespace a3::bridge
