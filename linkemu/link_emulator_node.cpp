@@ -83,11 +83,12 @@ void LinkEmulatorNode::start(common::Executor& executor, common::Bus& bus) {
     const int64_t period_us = std::max<int64_t>(1, std::llround(1e6 / config_.net_rate_hz));
     executor.schedule(now_us + period_us, period_us, [this] { publish_net(); });
   }
-  common::log_info(kLog, "started: " + describe_source() + ", slice " +
-                             to_string(selector_->active_at(now_us)) + ", handover " +
-                             std::to_string(config_.handover_delay_ms) + " ms, " +
-                             (config_.link.reordering ? "reordering" : "FIFO") +
-                             (config_.link.gilbert_elliott.enabled ? ", Gilbert-Elliott loss" : ""));
+  std::ostringstream line;
+  line << "started: " << describe_source() << ", slice " << to_string(selector_->active_at(now_us))
+       << ", handover " << config_.handover_delay_ms << " ms, "
+       << (config_.link.reordering ? "reordering" : "FIFO")
+       << (config_.link.gilbert_elliott.enabled ? ", Gilbert-Elliott loss" : "");
+  common::log_info(kLog, line.str());
 }
 
 std::string LinkEmulatorNode::describe_source() const {
@@ -116,7 +117,6 @@ void LinkEmulatorNode::publish_net() {
 }
 
 void LinkEmulatorNode::on_state_change() {
-  change_timer_ = 0;
   publish_net();
   schedule_change_timer();
 }
@@ -128,7 +128,10 @@ void LinkEmulatorNode::schedule_change_timer() {
   const int64_t next_us =
       std::min(source_->next_change_us(slice), selector_->pending_effective_us());
   if (next_us == kNever) return;
-  change_timer_ = executor_->schedule_at(next_us, [this] { on_state_change(); });
+  change_timer_ = executor_->schedule_at(next_us, [this] {
+    change_timer_ = 0;  // this timer has fired: nothing to cancel any more
+    on_state_change();
+  });
 }
 
 void LinkEmulatorNode::emit_record(a3lcm::link_record_t& r, const NetworkState& state) {
@@ -150,7 +153,7 @@ void LinkEmulatorNode::drop(Direction& d, DropReason reason, const a3lcm::link_m
   const uint64_t count = ++d.stats->dropped[static_cast<std::size_t>(reason)];
   if (worth_logging(count)) {
     std::ostringstream line;
-    line << "dropped a " << d.name << " message";
+    line << "dropped " << (d.name == std::string("up") ? "an uplink" : "a downlink") << " message";
     if (message != nullptr) line << " (id " << message->message_id << " from '" << message->sender << "')";
     line << ": " << to_string(reason) << ": " << detail << " [" << count << " " << d.name << " "
          << to_string(reason) << " drops so far]";

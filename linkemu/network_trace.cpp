@@ -52,6 +52,12 @@ NetworkState parse_vector(const json& object, const std::string& where) {
 
 int64_t to_us(double seconds) { return std::llround(seconds * 1e6); }
 
+// "file.json: " + text at the top level, "file.json: /trace: " + text below it.
+std::string problem(const std::string& where, const std::string& text) {
+  const bool top = where.size() >= 2 && where.compare(where.size() - 2, 2, ": ") == 0;
+  return where + (top ? "" : ": ") + text;
+}
+
 }  // namespace
 
 NetworkTrace parse_network_trace(const json& document, const std::string& where,
@@ -72,13 +78,13 @@ NetworkTrace parse_network_trace(const json& document, const std::string& where,
       period_s = common::require_number(document, "period_s", where);
     }
   } else if (!document.is_array()) {
-    throw InputError(where + ": expected a list of n_t points, an object with \"trace\", or an "
-                     "α³-Bench episode; got " + std::string(document.type_name()));
+    throw InputError(problem(where, "expected a list of n_t points, an object with \"trace\", or an "
+                                    "α³-Bench episode; got " + std::string(document.type_name())));
   }
   if (!(period_s > 0.0) || !std::isfinite(period_s)) {
-    throw InputError(where + ": the trace period must be a positive number of seconds");
+    throw InputError(problem(where, "the trace period must be a positive number of seconds"));
   }
-  if (points->empty()) throw InputError(points_where + ": the trace has no points");
+  if (points->empty()) throw InputError(problem(points_where, "the trace has no points"));
 
   NetworkTrace trace;
   trace.last_hold_us = to_us(period_s);
