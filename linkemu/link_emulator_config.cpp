@@ -82,7 +82,7 @@ const char* to_string(StartRegime start) {
 LinkEmulatorConfig parse_link_emulator_config(const json& object, const std::string& where,
                                               const std::filesystem::path& base_dir) {
   if (!object.is_object()) {
-    throw InputError(where + ": expected an object, got " + std::string(object.type_name()));
+    throw InputError(where + "expected an object, got " + std::string(object.type_name()));
   }
   reject_unknown(object,
                  {"seed", "slice", "start_regime", "redraw_mean_s", "degraded_dwell_mean_s",
@@ -145,7 +145,11 @@ LinkEmulatorConfig parse_link_emulator_config(const json& object, const std::str
     c.trace = load_network_trace(path, period_s);
     if (trace.contains("loop")) c.trace_loop = require_bool(trace, "loop", trace_where);
   }
-  checked(where, [&] { validate(c); });
+  try {
+    validate(c);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(where + "/" + e.what());  // "file.json: /field: value rule"
+  }
   return c;
 }
 
@@ -157,7 +161,7 @@ LinkEmulatorConfig load_link_emulator_config(const std::filesystem::path& path) 
 void validate(const LinkEmulatorConfig& c) {
   const auto fail = [](const std::string& field, double value, const std::string& rule) {
     std::ostringstream message;
-    message << field << " = " << value << ": " << rule;
+    message << field << ": " << value << " " << rule;
     throw std::invalid_argument(message.str());
   };
   const auto positive_if_set = [&](const std::optional<double>& v, const char* field) {
@@ -177,10 +181,10 @@ void validate(const LinkEmulatorConfig& c) {
   }
   const auto& ge = c.link.gilbert_elliott;
   if (ge.enabled && !(ge.mean_burst_messages >= 1.0)) {
-    fail("gilbert_elliott.mean_burst_messages", ge.mean_burst_messages, "must be >= 1");
+    fail("gilbert_elliott/mean_burst_messages", ge.mean_burst_messages, "must be >= 1");
   }
   if (ge.enabled && !(ge.loss_in_bad > 0.0 && ge.loss_in_bad <= 1.0)) {
-    fail("gilbert_elliott.loss_in_bad", ge.loss_in_bad, "must be in (0, 1]");
+    fail("gilbert_elliott/loss_in_bad", ge.loss_in_bad, "must be in (0, 1]");
   }
   if (!(c.edge.max_load >= 0.0 && c.edge.max_load < 1.0)) {
     fail("edge_max_load", c.edge.max_load, "must be in [0, 1)");

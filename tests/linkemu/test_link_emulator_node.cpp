@@ -461,7 +461,7 @@ TEST(LinkEmulatorNode, BadConfigIsRefusedNamingTheField) {
     LinkEmulatorNode node(config);
     FAIL() << "accepted a negative handover delay";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("handover_delay_ms = -1"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("handover_delay_ms: -1 must be"), std::string::npos) << e.what();
   }
   LinkEmulatorConfig impossible;
   impossible.min_dwell_s = 100.0;  // above the 30 s degraded mean
