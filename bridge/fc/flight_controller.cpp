@@ -48,15 +48,19 @@ const char* to_string(FcFailsafe f) {
 const char* to_string(FcRefusal r) {
   switch (r) {
     case FcRefusal::kNone: return "";
-    case FcRefusal::kBadValue: return "bad value";
-    case FcRefusal::kNotArmed: return "not armed";
-    case FcRefusal::kInFlight: return "in flight";
-    case FcRefusal::kNoPositionFix: return "no position fix";
-    case FcRefusal::kOutsideGeofence: return "outside the geofence";
-    case FcRefusal::kOutsideAltitude: return "outside the altitude envelope";
-    case FcRefusal::kLowBattery: return "battery too low";
     case FcRefusal::kUnknownCommand: return "unknown command";
-    case FcRefusal::kNotFlying: return "not flying";
+    case FcRefusal::kBadValue: return "invalid argument";
+    case FcRefusal::kNotArmed: return "not armed";
+    case FcRefusal::kInFlight: return "not allowed in flight";
+    case FcRefusal::kOnGround: return "not allowed on the ground";
+    case FcRefusal::kOutsideGeofence: return "outside the geofence";
+    case FcRefusal::kAboveAltitudeLimit: return "above the altitude limit";
+    case FcRefusal::kBelowAltitudeLimit: return "below the altitude limit";
+    case FcRefusal::kNoPositionFix: return "no position estimate";
+    case FcRefusal::kLowBattery: return "battery too low";
+    case FcRefusal::kFailsafeActive: return "a failsafe is active";
+    case FcRefusal::kEmergencyStopped: return "emergency stopped";
+    case FcRefusal::kBusy: return "not allowed in the current mode";
   }
   return "refused";
 }
@@ -70,7 +74,7 @@ FlightController::FlightController(FcParams params, EstimatorNoise noise)
 
 void FlightController::on_battery(double, double percent) { status_.battery_pct = percent; }
 
-FcCommandResult FlightController::refuse(const FcCommand& c, FcRefusal why, const std::string& detail) {
+FlightCommandResult FlightController::refuse(const FlightCommand& c, FcRefusal why, const std::string& detail) {
   status_.last_command_seq = c.seq;
   status_.last_command_accepted = false;
   status_.last_refusal = why;
@@ -83,7 +87,7 @@ FcCommandResult FlightController::refuse(const FcCommand& c, FcRefusal why, cons
   return {false, why, status_.last_reason};
 }
 
-FcCommandResult FlightController::accept(const FcCommand& c) {
+FlightCommandResult FlightController::accept(const FlightCommand& c) {
   status_.last_command_seq = c.seq;
   status_.last_command_accepted = true;
   status_.last_refusal = FcRefusal::kNone;
@@ -115,7 +119,7 @@ std::string FlightController::target_problem(const Eigen::Vector3d& t, FcRefusal
   const Geofence& fence = params_.fence;
   char text[200];
   if (!fence.altitude_ok(t.z())) {
-    *why = FcRefusal::kOutsideAltitude;
+    *why = t.z() > fence.max_altitude_m() ? FcRefusal::kAboveAltitudeLimit : FcRefusal::kBelowAltitudeLimit;
     std::snprintf(text, sizeof text, "altitude %.1f m is outside [%.1f, %.1f] m", t.z(), fence.min_altitude_m(),
                   fence.max_altitude_m());
     return text;
@@ -130,7 +134,7 @@ std::string FlightController::target_problem(const Eigen::Vector3d& t, FcRefusal
   return "";
 }
 
-FcCommandResult FlightController::on_command(const FcCommand& c, double t_s) {
+FlightCommandResult FlightController::on_command(const FlightCommand& c, double t_s) {
   last_command_t_s_ = t_s;
   if (link_lost_) {
     link_lost_ = false;
@@ -138,19 +142,27 @@ FcCommandResult FlightController::on_command(const FcCommand& c, double t_s) {
   }
   const EstimatedState& e = estimator_.state();
   const bool flying = status_.armed && status_.mode != FcMode::kDisarmed;
+  if (status_.mode == FcMode::kEmergency && c.kind != FlightCommandKind::kHeartbeat &&
+      c.kind != FlightCommandKind::kEmergencyStop) {
+    const bool on_ground = e.p_W_m.z() < kOnGroundAltitude_m;
+    const bool restart = c.kind == FlightCommandKind::kArm || c.kind == FlightCommandKind::kTakeoff ||
+                         c.kind == FlightCommandKind::kDisarm;
+    if (!(on_ground && restart)) return refuse(c, FcRefusal::kEmergencyStopped, "motors were cut");
+    enter(FcMode::kDisarmed);
+  }
   switch (c.kind) {
-    case FcCommandKind::kHeartbeat:
+    case FlightCommandKind::kHeartbeat:
       return {true, FcRefusal::kNone, ""};  // not a command: the last command's result stands
-    case FcCommandKind::kEmergencyStop:
+    case FlightCommandKind::kEmergencyStop:
       enter(FcMode::kEmergency);
       return accept(c);
-    case FcCommandKind::kArm:
-    case FcCommandKind::kTakeoff: {
+    case FlightCommandKind::kArm:
+    case FlightCommandKind::kTakeoff: {
       if (!e.valid()) return refuse(c, FcRefusal::kNoPositionFix, "the estimator has no attitude or position yet");
       if (status_.battery_pct <= params_.failsafe.low_battery_return_pct) {
         return refuse(c, FcRefusal::kLowBattery, std::to_string(status_.battery_pct) + " %");
       }
-      if (c.kind == FcCommandKind::kArm) {
+      if (c.kind == FlightCommandKind::kArm) {
         if (flying) return accept(c);
         arm(e);
         enter(FcMode::kHold);
@@ -161,7 +173,7 @@ FcCommandResult FlightController::on_command(const FcCommand& c, double t_s) {
         return refuse(c, FcRefusal::kBadValue, "take-off altitude must be above 0.5 m");
       }
       if (!params_.fence.altitude_ok(c.target_W_m.z()) && c.target_W_m.z() > params_.fence.max_altitude_m()) {
-        return refuse(c, FcRefusal::kOutsideAltitude, "take-off altitude above " +
+        return refuse(c, FcRefusal::kAboveAltitudeLimit, "take-off altitude above " +
                                                           std::to_string(params_.fence.max_altitude_m()) + " m");
       }
       if (!flying) arm(e);
@@ -170,16 +182,16 @@ FcCommandResult FlightController::on_command(const FcCommand& c, double t_s) {
       enter(FcMode::kTakeoff);
       return accept(c);
     }
-    case FcCommandKind::kDisarm:
+    case FlightCommandKind::kDisarm:
       if (flying && e.p_W_m.z() > kOnGroundAltitude_m) return refuse(c, FcRefusal::kInFlight, "land first");
       enter(FcMode::kDisarmed);
       return accept(c);
-    case FcCommandKind::kHold:
+    case FlightCommandKind::kHold:
       if (!flying) return refuse(c, FcRefusal::kNotArmed, "");
       hold_W_m_ = e.p_W_m;
       enter(FcMode::kHold);
       return accept(c);
-    case FcCommandKind::kGoto: {
+    case FlightCommandKind::kGoto: {
       if (!flying) return refuse(c, FcRefusal::kNotArmed, "");
       if (!finite(c.target_W_m) || !std::isfinite(c.speed_limit_mps)) return refuse(c, FcRefusal::kBadValue, "target");
       FcRefusal why = FcRefusal::kNone;
@@ -191,16 +203,16 @@ FcCommandResult FlightController::on_command(const FcCommand& c, double t_s) {
       enter(FcMode::kGoto);
       return accept(c);
     }
-    case FcCommandKind::kLand:
+    case FlightCommandKind::kLand:
       if (!flying) return refuse(c, FcRefusal::kNotArmed, "");
       hold_W_m_ = e.p_W_m;
       enter(FcMode::kLand);
       return accept(c);
-    case FcCommandKind::kReturnHome:
+    case FlightCommandKind::kReturnHome:
       if (!flying) return refuse(c, FcRefusal::kNotArmed, "");
       enter(FcMode::kReturnHome);
       return accept(c);
-    case FcCommandKind::kSetSpeed:
+    case FlightCommandKind::kSetSpeed:
       if (!std::isfinite(c.speed_limit_mps) || c.speed_limit_mps <= 0.0) {
         return refuse(c, FcRefusal::kBadValue, "speed must be > 0 m/s");
       }

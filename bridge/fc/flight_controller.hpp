@@ -21,34 +21,36 @@ namespace a3::bridge {
 // Values match lcmtypes/fc_status_t.lcm and fc_command_t.lcm.
 enum class FcMode : int8_t { kDisarmed = 0, kTakeoff = 1, kHold = 2, kGoto = 3, kLand = 4, kReturnHome = 5, kEmergency = 6 };
 enum class FcFailsafe : int8_t { kNone = 0, kLinkLoss = 1, kLowBattery = 2, kGeofence = 3, kAltitude = 4 };
-enum class FcCommandKind : int8_t {
+enum class FlightCommandKind : int8_t {
   kHeartbeat = 0, kArm = 1, kDisarm = 2, kTakeoff = 3, kHold = 4, kGoto = 5, kLand = 6,
   kReturnHome = 7, kEmergencyStop = 8, kSetSpeed = 9
 };
-// Why a command was refused (sent on CAN as a code, on LCM as text).
+// Why a command was refused: the codes of a3.fc.Status.last_command_reason on CAN
+// (bridge/dronecan/msg/a3_fc.hpp), so the fc node sends them as they are.
 enum class FcRefusal : uint8_t {
-  kNone = 0, kBadValue = 1, kNotArmed = 2, kInFlight = 3, kNoPositionFix = 4, kOutsideGeofence = 5,
-  kOutsideAltitude = 6, kLowBattery = 7, kUnknownCommand = 8, kNotFlying = 9
+  kNone = 0, kUnknownCommand = 1, kBadValue = 2, kNotArmed = 3, kInFlight = 4, kOnGround = 5,
+  kOutsideGeofence = 6, kAboveAltitudeLimit = 7, kBelowAltitudeLimit = 8, kNoPositionFix = 9,
+  kLowBattery = 10, kFailsafeActive = 11, kEmergencyStopped = 12, kBusy = 13
 };
 const char* to_string(FcMode mode);
 const char* to_string(FcFailsafe failsafe);
 const char* to_string(FcRefusal refusal);
 
-struct FcCommand {
-  FcCommandKind kind = FcCommandKind::kHeartbeat;
+struct FlightCommand {
+  FlightCommandKind kind = FlightCommandKind::kHeartbeat;
   int32_t seq = 0;
   Eigen::Vector3d target_W_m = Eigen::Vector3d::Zero();  // go-to target; takeoff altitude in z
   double speed_limit_mps = 0.0;                          // <= 0: keep the current speed
   double yaw_deg = std::numeric_limits<double>::quiet_NaN();  // heading (ENU, from east); NaN: keep
 };
 
-struct FcCommandResult {
+struct FlightCommandResult {
   bool accepted = false;
   FcRefusal refusal = FcRefusal::kNone;
   std::string reason;  // empty when accepted
 };
 
-struct FcStatus {
+struct FlightStatus {
   FcMode mode = FcMode::kDisarmed;
   bool armed = false;
   FcFailsafe failsafe = FcFailsafe::kNone;
@@ -75,15 +77,15 @@ class FlightController {
   const FcParams& params() const { return params_; }
   void on_battery(double t_s, double percent);
   // Any command (a heartbeat too) keeps the command link alive.
-  FcCommandResult on_command(const FcCommand& command, double t_s);
+  FlightCommandResult on_command(const FlightCommand& command, double t_s);
   // One control step at time t_s (call at the control rate).
   FcOutput step(double t_s);
-  const FcStatus& status() const { return status_; }
+  const FlightStatus& status() const { return status_; }
   const Eigen::Vector3d& home_W_m() const { return home_W_m_; }
 
  private:
-  FcCommandResult refuse(const FcCommand& c, FcRefusal why, const std::string& detail);
-  FcCommandResult accept(const FcCommand& c);
+  FlightCommandResult refuse(const FlightCommand& c, FcRefusal why, const std::string& detail);
+  FlightCommandResult accept(const FlightCommand& c);
   void enter(FcMode mode);
   void arm(const EstimatedState& e);
   void check_failsafes(double t_s, const EstimatedState& e);
@@ -94,7 +96,7 @@ class FlightController {
   StateEstimator estimator_;
   PositionController position_;
   AttitudeController attitude_;
-  FcStatus status_;
+  FlightStatus status_;
   double last_step_t_s_ = -1.0;
   double last_command_t_s_ = 0.0;
   bool link_lost_ = false;

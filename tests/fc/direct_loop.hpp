@@ -45,7 +45,7 @@ class DirectLoop {
   const dynamics::Integrator& vehicle() const { return *integrator_; }
   dynamics::Integrator& vehicle_mut() { return *integrator_; }
   double time_s() const { return tick_ * kTick_s; }
-  bridge::FcCommandResult command(bridge::FcCommand c) {
+  bridge::FlightCommandResult command(bridge::FlightCommand c) {
     c.seq = ++seq_;
     return fc_.on_command(c, time_s());
   }
@@ -80,7 +80,7 @@ class DirectLoop {
         const auto b = dynamics::read_battery(model_.params().battery, model_.battery_energy_J(), s.energy_used_J, power);
         fc_.on_battery(t, b.percent - battery_offset_pct);
       }
-      if (heartbeats && tick_ % 50 == 0) fc_.on_command(bridge::FcCommand{}, t);
+      if (heartbeats && tick_ % 50 == 0) fc_.on_command(bridge::FlightCommand{}, t);
       const bridge::FcOutput out = fc_.step(t);
       dynamics::RotorSpeeds cmd{};
       for (int i = 0; i < 4; ++i) cmd[i] = out.armed ? out.throttle[i] * model_.params().rotor.max_speed_radps : 0.0;

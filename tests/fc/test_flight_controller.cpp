@@ -11,23 +11,23 @@ namespace {
 
 using a3::test::DirectLoop;
 
-FcCommand takeoff(double z) {
-  FcCommand c;
-  c.kind = FcCommandKind::kTakeoff;
+FlightCommand takeoff(double z) {
+  FlightCommand c;
+  c.kind = FlightCommandKind::kTakeoff;
   c.target_W_m = {0, 0, z};
   return c;
 }
 
-FcCommand go_to(double x, double y, double z, double speed = 0.0) {
-  FcCommand c;
-  c.kind = FcCommandKind::kGoto;
+FlightCommand go_to(double x, double y, double z, double speed = 0.0) {
+  FlightCommand c;
+  c.kind = FlightCommandKind::kGoto;
   c.target_W_m = {x, y, z};
   c.speed_limit_mps = speed;
   return c;
 }
 
-FcCommand simple(FcCommandKind kind) {
-  FcCommand c;
+FlightCommand simple(FlightCommandKind kind) {
+  FlightCommand c;
   c.kind = kind;
   return c;
 }
@@ -94,7 +94,7 @@ TEST_F(FlightControllerTest, LandEndsDisarmedOnTheGround) {
   loop.run_until(1.0);
   ASSERT_TRUE(loop.command(takeoff(8.0)).accepted);
   loop.run_until(10.0);
-  ASSERT_TRUE(loop.command(simple(FcCommandKind::kLand)).accepted);
+  ASSERT_TRUE(loop.command(simple(FlightCommandKind::kLand)).accepted);
   loop.run_until(30.0);
   EXPECT_EQ(loop.fc().status().mode, FcMode::kDisarmed);
   EXPECT_FALSE(loop.fc().status().armed);
@@ -149,7 +149,7 @@ TEST_F(FlightControllerTest, GeofenceAndAltitudeEnvelope) {
   loop.run_until(1.0);
   auto r = loop.command(takeoff(60.0));
   EXPECT_FALSE(r.accepted);
-  EXPECT_EQ(r.refusal, FcRefusal::kOutsideAltitude);
+  EXPECT_EQ(r.refusal, FcRefusal::kAboveAltitudeLimit);
   ASSERT_TRUE(loop.command(takeoff(10.0)).accepted);
   loop.run_until(10.0);
   r = loop.command(go_to(150.0, 0.0, 10.0));
@@ -160,7 +160,7 @@ TEST_F(FlightControllerTest, GeofenceAndAltitudeEnvelope) {
   r = loop.command(go_to(98.0, 0.0, 10.0));  // inside, but within the 5 m margin
   EXPECT_FALSE(r.accepted);
   r = loop.command(go_to(20.0, 0.0, 45.0));
-  EXPECT_EQ(r.refusal, FcRefusal::kOutsideAltitude);
+  EXPECT_EQ(r.refusal, FcRefusal::kAboveAltitudeLimit);
   // A target 6 m inside the edge, approached at speed: it brakes and never crosses.
   ASSERT_TRUE(loop.command(go_to(94.0, 0.0, 10.0, 10.0)).accepted);
   double max_x = 0.0;
@@ -183,14 +183,15 @@ TEST_F(FlightControllerTest, BadCommandsAreRefusedWithReasons) {
   loop.run_until(8.0);
   r = loop.command(go_to(std::numeric_limits<double>::infinity(), 0.0, 10.0));
   EXPECT_EQ(r.refusal, FcRefusal::kBadValue);
-  r = loop.command(simple(FcCommandKind::kDisarm));
+  r = loop.command(simple(FlightCommandKind::kDisarm));
   EXPECT_EQ(r.refusal, FcRefusal::kInFlight);
-  FcCommand speed = simple(FcCommandKind::kSetSpeed);
+  FlightCommand speed = simple(FlightCommandKind::kSetSpeed);
   speed.speed_limit_mps = -1;
   EXPECT_EQ(loop.command(speed).refusal, FcRefusal::kBadValue);
   EXPECT_EQ(loop.fc().status().mode, FcMode::kHold);  // nothing changed the flight
   // Emergency stop cuts the motors.
-  EXPECT_TRUE(loop.command(simple(FcCommandKind::kEmergencyStop)).accepted);
+  EXPECT_TRUE(loop.command(simple(FlightCommandKind::kEmergencyStop)).accepted);
+  EXPECT_EQ(loop.command(go_to(5.0, 0.0, 10.0)).refusal, FcRefusal::kEmergencyStopped);
   loop.run_until(12.0);
   EXPECT_FALSE(loop.fc().status().armed);
   EXPECT_TRUE(loop.vehicle().on_ground());
