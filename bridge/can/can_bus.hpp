@@ -25,6 +25,7 @@ struct CanBusStats {
   uint64_t send_refused = 0;     // send() returned false: transmit queue full, bus gone
   uint64_t receive_errors = 0;   // malformed frames from the transport, dropped
   uint64_t peer_overruns = 0;    // userspace bus: frames a slow peer could not take
+  uint64_t receive_overruns = 0;  // SocketCAN: frames the kernel dropped, read too slowly
   std::size_t tx_queue_peak = 0;  // most frames waiting to be sent at once
 };
 

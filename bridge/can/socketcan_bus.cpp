@@ -10,6 +10,7 @@
 #include <sys/eventfd.h>
 #include <sys/ioctl.h>
 #include <sys/socket.h>
+#include <sys/uio.h>
 #include <unistd.h>
 
 #include <cstring>
@@ -21,6 +22,13 @@ namespace {
 std::string errno_text(int error) { return std::strerror(error); }
 
 // Opens a bound raw CAN socket, or returns -1 with the reason.
+void enlarge_receive_buffer(int fd, int bytes) {
+  if (bytes <= 0) return;
+  if (::setsockopt(fd, SOL_SOCKET, SO_RCVBUFFORCE, &bytes, sizeof bytes) != 0) {
+    ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &bytes, sizeof bytes);  // capped by rmem_max
+  }
+}
+
 int open_can_socket(const std::string& interface, bool own_frames, std::string& why) {
   if (interface.empty() || interface.size() >= IFNAMSIZ) {
     why = "'" + interface + "' is not a valid interface name";
@@ -49,6 +57,8 @@ int open_can_socket(const std::string& interface, bool own_frames, std::string& 
   }
   const int own = own_frames ? 1 : 0;
   ::setsockopt(fd, SOL_CAN_RAW, CAN_RAW_RECV_OWN_MSGS, &own, sizeof own);
+  const int one = 1;
+  ::setsockopt(fd, SOL_SOCKET, SO_RXQ_OVFL, &one, sizeof one);  // drop counter per message
   struct sockaddr_can addr {};
   addr.can_family = AF_CAN;
   addr.can_ifindex = ifr.ifr_ifindex;
@@ -75,6 +85,7 @@ SocketCanBus::SocketCanBus(const std::string& interface, SocketCanOptions option
   std::string why;
   socket_fd_ = open_can_socket(interface, options.receive_own_frames, why);
   if (socket_fd_ < 0) throw std::runtime_error("SocketCAN " + interface + ": " + why);
+  enlarge_receive_buffer(socket_fd_, options.receive_buffer_bytes);
   wake_fd_ = ::eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
   if (wake_fd_ < 0) {
     ::close(socket_fd_);
@@ -176,10 +187,23 @@ void SocketCanBus::run() {
       const int64_t rx_time_us = dispatcher_.now_us();
       std::size_t received = 0;
       std::size_t bad = 0;
+      uint32_t drops = kernel_drops_;
       for (int i = 0; i < 256; ++i) {
         struct can_frame raw;
-        const ssize_t n = ::recv(socket_fd_, &raw, sizeof raw, MSG_DONTWAIT);
+        struct iovec iov {&raw, sizeof raw};
+        alignas(struct cmsghdr) char control[CMSG_SPACE(sizeof(uint32_t))];
+        struct msghdr msg {};
+        msg.msg_iov = &iov;
+        msg.msg_iovlen = 1;
+        msg.msg_control = control;
+        msg.msg_controllen = sizeof control;
+        const ssize_t n = ::recvmsg(socket_fd_, &msg, MSG_DONTWAIT);
         if (n < 0) break;
+        for (struct cmsghdr* c = CMSG_FIRSTHDR(&msg); c != nullptr; c = CMSG_NXTHDR(&msg, c)) {
+          if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SO_RXQ_OVFL) {
+            std::memcpy(&drops, CMSG_DATA(c), sizeof drops);
+          }
+        }
         const auto frame = n == static_cast<ssize_t>(sizeof raw) ? from_socketcan(raw) : std::nullopt;
         if (!frame) {
           ++bad;
@@ -192,6 +216,8 @@ void SocketCanBus::run() {
       std::lock_guard lock(mutex_);
       stats_.frames_received += received;
       stats_.receive_errors += bad;
+      stats_.receive_overruns += static_cast<uint32_t>(drops - kernel_drops_);
+      kernel_drops_ = drops;
     }
   }
 }

@@ -19,6 +19,9 @@ namespace a3::bridge {
 struct SocketCanOptions {
   std::size_t tx_queue_frames = 1024;  // frames waiting for the interface; beyond: refused
   bool receive_own_frames = false;     // CAN_RAW_RECV_OWN_MSGS
+  // Kernel receive buffer: the default (~200 KiB) holds only ~300 frames, too few for
+  // bursts when the reader is slow (e.g. under emulation). Needs root beyond rmem_max.
+  int receive_buffer_bytes = 8 << 20;
 };
 
 class SocketCanBus final : public CanBus {
@@ -58,6 +61,7 @@ class SocketCanBus final : public CanBus {
   mutable std::mutex mutex_;  // tx queue and stats
   std::deque<CanFrame> tx_queue_;
   CanBusStats stats_;
+  uint32_t kernel_drops_ = 0;  // SO_RXQ_OVFL: cumulative count from the kernel
 };
 
 }  // namespace a3::bridge

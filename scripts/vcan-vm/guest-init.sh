@@ -31,7 +31,7 @@ if mount -t 9p -o trans=virtio,version=9p2000.L,ro,msize=262144,cache=loose host
     R=/newroot
   else
     echo "a3vm: overlay failed, using the read-only root with a tmpfs /tmp"
-    R=/host; mount -t tmpfs tmpfs $R/tmp
+    R=/host; mount -t tmpfs tmpfs $R/tmp; mount -t tmpfs tmpfs $R/root
   fi
   mount -t proc proc $R/proc
   mount -t sysfs sysfs $R/sys
@@ -40,7 +40,6 @@ if mount -t 9p -o trans=virtio,version=9p2000.L,ro,msize=262144,cache=loose host
   mount -t devpts devpts $R/dev/pts
   mount -t tmpfs tmpfs $R/dev/shm
   mount -t tmpfs tmpfs $R/run
-  mount -t tmpfs tmpfs $R/tmp
   if [ -n "$RW" ]; then
     mount -t 9p -o trans=virtio,version=9p2000.L,msize=262144 rwdir $R$RW || echo "a3vm: read-write mount failed"
   fi

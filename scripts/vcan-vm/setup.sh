@@ -1,43 +1,59 @@
 #!/bin/sh
-# Prepares the vcan test VM once: fetches Debian's generic amd64 kernel (apt-get download, not
-# installed), unpacks the uncompressed vmlinux and builds a busybox initramfs with the CAN,
-# 9p and overlay modules. Idempotent; the result is cached outside the repository.
+# Prepares the vcan test VM once: fetches Debian's generic amd64 kernel package (apt-get
+# download: not installed), unpacks the uncompressed vmlinux and builds a busybox initramfs
+# with the virtio, 9p, overlay and CAN modules and guest-init.sh as /init. Idempotent: the
+# result is cached outside the repository and rebuilt only when the kernel package or the
+# initramfs scripts change; a cached kernel is used without asking apt at all.
 # Usage: scripts/vcan-vm/setup.sh [cache dir]   (default $A3_VCAN_VM_DIR or ~/.cache/a3rig/vcan-vm)
-# Exit status: 0 ready, 77 cannot be prepared here (message on stderr says why).
+# Exit status: 0 ready, 77 cannot be prepared here (the message on stderr says why).
 set -eu
 HERE=$(cd "$(dirname "$0")" && pwd)
 DIR=${1:-${A3_VCAN_VM_DIR:-${HOME:-/root}/.cache/a3rig/vcan-vm}}
 say() { echo "vcan-vm setup: $*" >&2; }
 cannot() { say "$*"; exit 77; }
 
-for tool in qemu-system-x86_64 busybox apt-get apt-cache dpkg-deb gzip cpio python3; do
-  case $tool in
-    busybox) [ -x /bin/busybox ] || cannot "/bin/busybox missing (apt-get install busybox-static)";;
-    cpio) ;; # busybox provides cpio
-    *) command -v "$tool" >/dev/null 2>&1 || cannot "$tool not found (qemu-system-x86 / apt tools needed)";;
-  esac
-done
-file -L /bin/busybox 2>/dev/null | grep -q 'dynamically linked' && \
+[ -x /bin/busybox ] || cannot "/bin/busybox missing (Debian package busybox-static; scripts/setup.sh installs it)"
+if command -v file >/dev/null 2>&1 && file -L /bin/busybox | grep -q 'dynamically linked'; then
   cannot "/bin/busybox is dynamically linked; the initramfs needs busybox-static"
+fi
+for tool in dpkg-deb gzip python3 sha256sum; do
+  command -v "$tool" >/dev/null 2>&1 || cannot "$tool not found"
+done
 
-mkdir -p "$DIR"
+mkdir -p "$DIR" "$DIR/debs"
 cd "$DIR"
-# Debian's generic kernel (the cloud flavour has neither CAN nor 9p).
-KPKG=$(apt-cache depends linux-image-amd64 2>/dev/null | sed -n 's/.*Depends: \(linux-image-[0-9].*-amd64\)$/\1/p' | head -n1)
-[ -n "$KPKG" ] || cannot "apt-cache knows no linux-image-amd64 (run apt-get update?)"
-if [ -f vmlinux ] && [ -f initramfs.cpio.gz ] && [ "$(cat kernel-package 2>/dev/null)" = "$KPKG" ]; then
+SCRIPTS_HASH=$(cat "$HERE/build-initramfs.sh" "$HERE/guest-init.sh" | sha256sum | cut -c1-16)
+
+# Which kernel: the one cached, unless apt knows a newer linux-image-amd64 dependency.
+KPKG=
+if command -v apt-cache >/dev/null 2>&1; then
+  KPKG=$(apt-cache depends linux-image-amd64 2>/dev/null |
+         sed -n 's/.*Depends: \(linux-image-[0-9].*-amd64\)$/\1/p' | head -n1)
+fi
+CACHED=$(cat kernel-package 2>/dev/null || true)
+[ -n "$KPKG" ] || KPKG=$CACHED
+if [ -z "$KPKG" ] && command -v apt-get >/dev/null 2>&1; then
+  say "asking apt for the kernel package (apt-get update)"
+  apt-get update -qq >/dev/null 2>&1 || true
+  KPKG=$(apt-cache depends linux-image-amd64 2>/dev/null |
+         sed -n 's/.*Depends: \(linux-image-[0-9].*-amd64\)$/\1/p' | head -n1)
+fi
+[ -n "$KPKG" ] || cannot "no kernel cached in $DIR and apt knows no linux-image-amd64 (no Debian archive here?)"
+
+if [ -f vmlinux ] && [ -f initramfs.cpio.gz ] && [ "$CACHED" = "$KPKG" ] &&
+   [ "$(cat initramfs-scripts 2>/dev/null)" = "$SCRIPTS_HASH" ]; then
   exit 0
 fi
 say "preparing $KPKG in $DIR"
-mkdir -p debs
 if ! ls debs/"$KPKG"_*.deb >/dev/null 2>&1; then
-  (cd debs && apt-get download -q "$KPKG" >/dev/null 2>&1) || \
-    (apt-get update -qq >/dev/null 2>&1 && cd debs && apt-get download -q "$KPKG" >/dev/null 2>&1) || \
+  command -v apt-get >/dev/null 2>&1 || cannot "apt-get not found: cannot download $KPKG"
+  (cd debs && apt-get download -q "$KPKG" >/dev/null 2>&1) ||
+    (apt-get update -qq >/dev/null 2>&1 && cd debs && apt-get download -q "$KPKG" >/dev/null 2>&1) ||
     cannot "apt-get download $KPKG failed (no access to the Debian archive?)"
 fi
 rm -rf kroot && mkdir kroot
 dpkg-deb -x debs/"$KPKG"_*.deb kroot
-# Boot the uncompressed ELF (PVH entry): skips the slow in-guest xz decompression under TCG.
+# Boot the uncompressed ELF (PVH entry): saves ~3 s of in-guest xz decompression under TCG.
 python3 - kroot/boot/vmlinuz-* vmlinux.tmp <<'PY'
 import lzma, sys
 data = open(sys.argv[1], 'rb').read()
@@ -50,5 +66,8 @@ PY
 mv vmlinux.tmp vmlinux
 mv initramfs.cpio.gz.tmp initramfs.cpio.gz
 rm -rf kroot
+# Keep only this kernel's package.
+find debs -name '*.deb' ! -name "${KPKG}_*" -delete
 echo "$KPKG" > kernel-package
+echo "$SCRIPTS_HASH" > initramfs-scripts
 say "ready: $DIR/vmlinux, $DIR/initramfs.cpio.gz"
