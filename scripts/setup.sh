@@ -40,6 +40,10 @@ packages=(
   gnuplot-nox                                    # leaderboard plots (PNG)
   python3 python3-jsonschema                     # the Python reference scorer (cross-check, baseline)
   iproute2                                       # multicast loopback route for LCM's UDP transport
+  # Real SocketCAN for the CAN tests on kernels without it (scripts/vcan-vm): QEMU boots
+  # Debian's kernel (fetched with apt-get download, not installed) from a busybox
+  # initramfs; can-utils gives candump/cansend; python3 unpacks the kernel image.
+  qemu-system-x86 busybox-static can-utils
 )
 
 if [ "$install" = 1 ]; then
