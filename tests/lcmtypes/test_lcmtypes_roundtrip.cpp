@@ -28,6 +28,8 @@
 #include "a3lcm/sim_clock_t.hpp"
 #include "a3lcm/slice_switch_reply_t.hpp"
 #include "a3lcm/slice_switch_request_t.hpp"
+#include "a3lcm/payload_event_t.hpp"
+#include "a3lcm/traffic_state_t.hpp"
 #include "a3lcm/vehicle_state_t.hpp"
 #include "tests/test_support.hpp"
 
@@ -442,13 +444,60 @@ struct Case<a3lcm::slice_switch_reply_t> {
   }
 };
 
+template <>
+struct Case<a3lcm::payload_event_t> {
+  static a3lcm::payload_event_t make() {
+    a3lcm::payload_event_t m;
+    m.utime_us = kBigTime + 23;
+    m.kind = "capture";
+    m.sensor = "thermal";
+    m.item_id = "img-000042";
+    fill(m.p_W_m, -12.5);
+    m.yaw_deg = 271.5;
+    m.size_bytes = (int64_t{1} << 33) + 5;
+    m.downlinked = true;
+    return m;
+  }
+  static void expect_equal(const a3lcm::payload_event_t& a, const a3lcm::payload_event_t& b) {
+    EXPECT_EQ(a.utime_us, b.utime_us);
+    EXPECT_EQ(a.kind, b.kind);
+    EXPECT_EQ(a.sensor, b.sensor);
+    EXPECT_EQ(a.item_id, b.item_id);
+    expect_same_array(a.p_W_m, b.p_W_m, "p_W_m");
+    EXPECT_SAME_DOUBLE(a.yaw_deg, b.yaw_deg);
+    EXPECT_EQ(a.size_bytes, b.size_bytes);
+    EXPECT_EQ(a.downlinked, b.downlinked);
+  }
+};
+
+template <>
+struct Case<a3lcm::traffic_state_t> {
+  static a3lcm::traffic_state_t make() {
+    a3lcm::traffic_state_t m;
+    m.utime_us = kBigTime + 29;
+    m.id = "peer-7";
+    fill(m.p_W_m, 350.25);
+    fill(m.v_W_mps, -6.5);
+    m.status = "yielding";
+    return m;
+  }
+  static void expect_equal(const a3lcm::traffic_state_t& a, const a3lcm::traffic_state_t& b) {
+    EXPECT_EQ(a.utime_us, b.utime_us);
+    EXPECT_EQ(a.id, b.id);
+    expect_same_array(a.p_W_m, b.p_W_m, "p_W_m");
+    expect_same_array(a.v_W_mps, b.v_W_mps, "v_W_mps");
+    EXPECT_EQ(a.status, b.status);
+  }
+};
+
 // The types with a round-trip case: add a new type here and a Case<> above.
 using AllTypesTuple =
     std::tuple<a3lcm::actuator_cmd_t, a3lcm::edge_compute_reply_t, a3lcm::edge_compute_request_t,
                a3lcm::episode_event_t, a3lcm::fc_command_t, a3lcm::fc_status_t,
                a3lcm::link_message_t, a3lcm::link_record_t, a3lcm::network_state_t,
-               a3lcm::safety_event_t, a3lcm::sim_clock_t, a3lcm::slice_switch_reply_t,
-               a3lcm::slice_switch_request_t, a3lcm::vehicle_state_t>;
+               a3lcm::payload_event_t, a3lcm::safety_event_t, a3lcm::sim_clock_t,
+               a3lcm::slice_switch_reply_t, a3lcm::slice_switch_request_t,
+               a3lcm::traffic_state_t, a3lcm::vehicle_state_t>;
 
 template <typename Tuple>
 struct GtestTypes;
