@@ -1,25 +1,13 @@
 // Polygon geofence.
 #include "bridge/fc/geofence.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
+
+#include "common/polygon.hpp"
 
 namespace a3::bridge {
-namespace {
-
-// Distance from p to segment ab, and the closest point.
-double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                        Eigen::Vector2d* closest) {
-  const Eigen::Vector2d ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  *closest = a + t * ab;
-  return (p - *closest).norm();
-}
-
-}  // namespace
 
 Geofence::Geofence(std::vector<Eigen::Vector2d> polygon, double min_altitude_m, double max_altitude_m)
     : polygon_(std::move(polygon)), min_altitude_m_(min_altitude_m), max_altitude_m_(max_altitude_m) {
@@ -34,27 +22,11 @@ Geofence::Geofence(std::vector<Eigen::Vector2d> polygon, double min_altitude_m, 
 }
 
 bool Geofence::contains_xy(const Eigen::Vector2d& p) const {
-  if (!has_polygon()) return true;
-  bool inside = false;
-  for (std::size_t i = 0, j = polygon_.size() - 1; i < polygon_.size(); j = i++) {
-    const Eigen::Vector2d& a = polygon_[i];
-    const Eigen::Vector2d& b = polygon_[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) &&
-        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x()) {
-      inside = !inside;
-    }
-  }
-  return inside;
+  return !has_polygon() || common::polygon_contains(polygon_, p);
 }
 
 double Geofence::distance_to_edge_m(const Eigen::Vector2d& p) const {
-  if (!has_polygon()) return std::numeric_limits<double>::infinity();
-  double best = std::numeric_limits<double>::infinity();
-  Eigen::Vector2d closest;
-  for (std::size_t i = 0, j = polygon_.size() - 1; i < polygon_.size(); j = i++) {
-    best = std::min(best, segment_distance(p, polygon_[j], polygon_[i], &closest));
-  }
-  return best;
+  return has_polygon() ? common::polygon_edge_distance(polygon_, p) : std::numeric_limits<double>::infinity();
 }
 
 Eigen::Vector2d Geofence::outward_normal_near(const Eigen::Vector2d& p) const {
@@ -62,7 +34,7 @@ Eigen::Vector2d Geofence::outward_normal_near(const Eigen::Vector2d& p) const {
   Eigen::Vector2d normal = Eigen::Vector2d::UnitX();
   Eigen::Vector2d closest;
   for (std::size_t i = 0, j = polygon_.size() - 1; i < polygon_.size(); j = i++) {
-    const double d = segment_distance(p, polygon_[j], polygon_[i], &closest);
+    const double d = common::segment_distance(p, polygon_[j], polygon_[i], &closest);
     if (d < best) {
       best = d;
       const Eigen::Vector2d edge = polygon_[i] - polygon_[j];
