@@ -91,10 +91,13 @@ SocketCanBus::SocketCanBus(const std::string& interface, SocketCanOptions option
     ::close(socket_fd_);
     throw std::runtime_error("SocketCAN " + interface + ": eventfd: " + errno_text(errno));
   }
+  // The I/O thread runs from the start: it drains the transmit queue even before start().
+  thread_ = std::thread([this] { run(); });
 }
 
 SocketCanBus::~SocketCanBus() {
   stop();
+  stop_io_thread();
   if (socket_fd_ >= 0) ::close(socket_fd_);
   if (wake_fd_ >= 0) ::close(wake_fd_);
 }
@@ -147,14 +150,13 @@ void SocketCanBus::wake() {
 }
 
 void SocketCanBus::start(common::Executor& executor, CanFrameHandler handler) {
-  if (thread_.joinable()) throw std::logic_error(name() + ": started twice");
+  if (dispatcher_.started()) throw std::logic_error(name() + ": started twice");
   dispatcher_.start(executor, std::move(handler));
-  stop_ = false;
-  thread_ = std::thread([this] { run(); });
 }
 
-void SocketCanBus::stop() {
-  dispatcher_.stop();
+void SocketCanBus::stop() { dispatcher_.stop(); }
+
+void SocketCanBus::stop_io_thread() {
   if (!thread_.joinable()) return;
   stop_ = true;
   wake();
@@ -212,7 +214,7 @@ void SocketCanBus::run() {
         dispatcher_.push(*frame, rx_time_us);
         ++received;
       }
-      dispatcher_.flush();
+      received = dispatcher_.flush();
       std::lock_guard lock(mutex_);
       stats_.frames_received += received;
       stats_.receive_errors += bad;

@@ -45,6 +45,7 @@ class SocketCanBus final : public CanBus {
 
  private:
   void run();
+  void stop_io_thread();
   void wake();
   // Writes queued frames until the socket would block; returns the errno that stopped it.
   int drain_locked();

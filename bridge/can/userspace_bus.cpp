@@ -81,6 +81,9 @@ UserspaceCanBus::UserspaceCanBus(const std::string& bus_name, UserspaceCanOption
     ::close(wake_fd_);
     throw;
   }
+  // The I/O thread runs from the start: it accepts members that join later and drains the
+  // peers' queues even before start().
+  thread_ = std::thread([this] { run(); });
 }
 
 void UserspaceCanBus::join() {
@@ -136,6 +139,7 @@ void UserspaceCanBus::join() {
 
 UserspaceCanBus::~UserspaceCanBus() {
   stop();
+  stop_io_thread();
   for (auto& peer : peers_) ::close(peer->fd);
   if (listen_fd_ >= 0) ::close(listen_fd_);
   ::unlink(socket_path_.c_str());
@@ -182,14 +186,13 @@ void UserspaceCanBus::wake() {
 }
 
 void UserspaceCanBus::start(common::Executor& executor, CanFrameHandler handler) {
-  if (thread_.joinable()) throw std::logic_error(name() + ": started twice");
+  if (dispatcher_.started()) throw std::logic_error(name() + ": started twice");
   dispatcher_.start(executor, std::move(handler));
-  stop_ = false;
-  thread_ = std::thread([this] { run(); });
 }
 
-void UserspaceCanBus::stop() {
-  dispatcher_.stop();
+void UserspaceCanBus::stop() { dispatcher_.stop(); }
+
+void UserspaceCanBus::stop_io_thread() {
   if (!thread_.joinable()) return;
   stop_ = true;
   wake();
@@ -278,7 +281,7 @@ void UserspaceCanBus::run() {
       if (alive && !peer.backlog.empty()) alive = drain_peer(peer);
       if (!alive) peer.dead = true;
     }
-    dispatcher_.flush();
+    received = dispatcher_.flush();
     std::lock_guard lock(mutex_);
     stats_.frames_received += received;
     stats_.receive_errors += bad;

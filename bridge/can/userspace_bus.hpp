@@ -65,6 +65,7 @@ class UserspaceCanBus final : public CanBus {
 
   void join();
   void run();
+  void stop_io_thread();
   void wake();
   void accept_peers();
   // Reads what a peer sent; false when it is gone.

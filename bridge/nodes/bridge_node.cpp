@@ -1,0 +1,215 @@
+// The LCM⇄CAN bridge node.
+#include "bridge/nodes/bridge_node.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "a3lcm/actuator_cmd_t.hpp"
+#include "a3lcm/fc_status_t.hpp"
+#include "bridge/dronecan/messages.hpp"
+#include "bridge/nodes/esc_scaling.hpp"
+#include "bridge/nodes/fc_messages.hpp"
+#include "common/channels.hpp"
+#include "common/log.hpp"
+
+namespace a3::bridge {
+namespace {
+
+constexpr int64_t kNodeStatusPeriod_us = 1'000'000;
+constexpr int64_t kRestartGap_us = 1'000'000;     // a state this far back: the dynamics restarted
+constexpr double kPowerAverageTime_s = 10.0;      // BatteryInfo.average_power_10sec
+
+bool is_power_of_ten(uint64_t n) {
+  while (n >= 10 && n % 10 == 0) n /= 10;
+  return n == 1;
+}
+
+std::string or_default(const std::string& channel, const char* fallback) {
+  return channel.empty() ? fallback : channel;
+}
+
+}  // namespace
+
+BridgeNode::BridgeNode(CanBus& can, BridgeNodeConfig config)
+    : config_(std::move(config)),
+      frame_(config_.home),
+      sensors_(config_.noise, config_.seed),
+      dronecan_(can, DroneCanNodeConfig{config_.node_id, {}, 500'000}),
+      imu_schedule_(config_.rates.imu_hz),
+      gnss_schedule_(config_.rates.gnss_hz),
+      baro_schedule_(config_.rates.baro_hz),
+      temperature_schedule_(config_.rates.temperature_hz),
+      mag_schedule_(config_.rates.mag_hz),
+      battery_schedule_(config_.rates.battery_hz) {
+  config_.state_channel = or_default(config_.state_channel, common::channels::kState);
+  config_.actuator_channel = or_default(config_.actuator_channel, common::channels::kActuators);
+  config_.command_channel = or_default(config_.command_channel, common::channels::kFcCommand);
+  config_.status_channel = or_default(config_.status_channel, common::channels::kFcStatus);
+}
+
+BridgeNode::~BridgeNode() { stop(); }
+
+void BridgeNode::warn(uint64_t count, const std::string& message) const {
+  // The first, tenth, hundredth... occurrence: a flood of bad input stays readable.
+  if (is_power_of_ten(count)) common::log_warn("bridge", message + " (" + std::to_string(count) + " so far)");
+}
+
+void BridgeNode::start(common::Executor& executor, common::Bus& bus) {
+  if (executor_ != nullptr) throw std::logic_error("bridge node: started twice");
+  executor_ = &executor;
+  bus_ = &bus;
+  dronecan_.subscribe<EscRawCommand>([this](const EscRawCommand& m, const ReceivedTransfer&) { on_esc(m); });
+  dronecan_.subscribe<FcStatus>([this](const FcStatus& m, const ReceivedTransfer&) { on_status(m); });
+  dronecan_.publish_node_status_every(kNodeStatusPeriod_us);
+  dronecan_.start(executor);
+  bus.subscribe<a3lcm::vehicle_state_t>(config_.state_channel,
+                                        [this](const a3lcm::vehicle_state_t& s, int64_t) { on_state(s); });
+  bus.subscribe<a3lcm::fc_command_t>(config_.command_channel,
+                                     [this](const a3lcm::fc_command_t& c, int64_t) { on_command(c); });
+  timers_.push_back(executor.schedule_every(kNodeStatusPeriod_us / 2, [this] { update_health(); }));
+  common::log_info("bridge", "node " + std::to_string(config_.node_id) + " on " + dronecan_.bus().name() +
+                                 ": IMU " + std::to_string(config_.rates.imu_hz) + " Hz (at most one per state)");
+}
+
+void BridgeNode::stop() {
+  if (executor_ == nullptr) return;
+  for (const auto id : timers_) executor_->cancel(id);
+  timers_.clear();
+  dronecan_.stop();
+  executor_ = nullptr;
+}
+
+template <class Msg>
+void BridgeNode::publish_can(const Msg& msg, uint8_t priority) {
+  if (!dronecan_.publish(msg, priority)) ++counters_.can_publish_failures;
+}
+
+void BridgeNode::on_state(const a3lcm::vehicle_state_t& s) {
+  if (!vehicle_state_is_valid(s)) {
+    warn(++counters_.states_rejected, "dropped a vehicle state with NaN, infinite or non-unit-attitude values");
+    return;
+  }
+  if (have_state_ && s.utime_us <= last_state_utime_us_) {
+    if (last_state_utime_us_ - s.utime_us < kRestartGap_us) {
+      warn(++counters_.states_rejected, "dropped a vehicle state older than the last one");
+      return;
+    }
+    common::log_info("bridge", "vehicle state time went back by more than 1 s: the sensors start over");
+    imu_.reset();
+    for (RateSchedule* r : {&imu_schedule_, &gnss_schedule_, &baro_schedule_, &temperature_schedule_,
+                            &mag_schedule_, &battery_schedule_}) {
+      r->reset();
+    }
+    have_power_ = false;
+  }
+  const double dt_s = have_state_ ? static_cast<double>(s.utime_us - last_state_utime_us_) * 1e-6 : 0.0;
+  have_state_ = true;
+  last_state_utime_us_ = s.utime_us;
+  last_state_rx_us_ = executor_->clock().now_us();
+  ++counters_.states;
+  if (!have_power_) {
+    average_power_W_ = s.power_w;
+    have_power_ = true;
+  } else {
+    const double alpha = std::clamp(dt_s / kPowerAverageTime_s, 0.0, 1.0);
+    average_power_W_ += alpha * (s.power_w - average_power_W_);
+  }
+  publish_sensors(s);
+}
+
+void BridgeNode::publish_sensors(const a3lcm::vehicle_state_t& s) {
+  const TruthSample truth = truth_from_state(s);
+  const uint64_t stamp_us = static_cast<uint64_t>(std::max<int64_t>(s.utime_us, 0));
+  imu_.add(truth.t_s, sensors_.gyro_B_radps(truth), sensors_.accel_B_mps2(truth));
+  if (imu_schedule_.due(s.utime_us)) {
+    publish_can(imu_.take_report(stamp_us), kPriorityHigh);
+    ++counters_.imu;
+  }
+  if (gnss_schedule_.due(s.utime_us)) {
+    const Eigen::Vector3d p = sensors_.gnss_position_W_m(truth);
+    const Eigen::Vector3d v = sensors_.gnss_velocity_W_mps(truth);
+    publish_can(make_gnss_fix(stamp_us, frame_, p, v), kPriorityMedium);
+    ++counters_.gnss;
+  }
+  if (baro_schedule_.due(s.utime_us)) {
+    const double pressure = sensors_.static_pressure_Pa(truth, config_.home.height_m);
+    publish_can(make_static_pressure(pressure, sensors_.noise().baro_pressure_Pa), kPriorityMedium);
+    ++counters_.baro;
+  }
+  if (temperature_schedule_.due(s.utime_us)) {
+    publish_can(make_static_temperature(isa_temperature_K(config_.home.height_m + truth.p_W_m.z())),
+                kPriorityLow);
+  }
+  if (mag_schedule_.due(s.utime_us)) {
+    publish_can(make_magnetic_field(sensors_.magnetic_field_B_gauss(truth), sensors_.noise().mag_gauss),
+                kPriorityMedium);
+    ++counters_.mag;
+  }
+  if (battery_schedule_.due(s.utime_us)) {
+    publish_can(make_battery_info(s, average_power_W_), kPriorityLow);
+    ++counters_.battery;
+  }
+}
+
+void BridgeNode::on_command(const a3lcm::fc_command_t& c) {
+  ++counters_.commands;
+  if (fc_command_has_nonfinite(c)) {
+    warn(++counters_.commands_nonfinite,
+         "forwarding a command with a non-finite target or speed (seq " + std::to_string(c.seq) +
+             "): the fc will refuse it");
+  }
+  publish_can(fc_command_to_can(c), kPriorityMedium);
+}
+
+void BridgeNode::on_esc(const EscRawCommand& esc) {
+  if (esc.cmd.size() < 4) {
+    warn(++counters_.esc_rejected, "dropped an esc.RawCommand for " + std::to_string(esc.cmd.size()) +
+                                       " rotors (the quadrotor needs 4)");
+    return;
+  }
+  a3lcm::actuator_cmd_t out;
+  out.utime_us = executor_->clock().now_us();
+  out.armed = false;
+  bool clamped = false;
+  for (int i = 0; i < 4; ++i) {
+    clamped |= esc.cmd[i] < 0;
+    out.throttle[i] = esc_raw_to_throttle(esc.cmd[i]);
+    out.armed |= esc.cmd[i] > 0;
+  }
+  if (clamped) warn(++counters_.esc_clamped, "took a reverse (negative) esc.RawCommand as 0");
+  ++counters_.esc_frames;
+  bus_->publish(config_.actuator_channel, out);
+}
+
+void BridgeNode::on_status(const FcStatus& status) {
+  ++counters_.statuses;
+  bus_->publish(config_.status_channel, fc_status_from_can(status, executor_->clock().now_us()));
+}
+
+void BridgeNode::update_health() {
+  const int64_t now_us = executor_->clock().now_us();
+  const bool stale = last_state_rx_us_ < 0 || now_us - last_state_rx_us_ > config_.state_timeout_us;
+  dronecan_.set_health(stale ? NodeStatus::kHealthWarning : NodeStatus::kHealthOk);
+}
+
+BridgeNodeCounters BridgeNode::counters() const {
+  BridgeNodeCounters c;
+  c.states = counters_.states;
+  c.states_rejected = counters_.states_rejected;
+  c.imu = counters_.imu;
+  c.gnss = counters_.gnss;
+  c.baro = counters_.baro;
+  c.mag = counters_.mag;
+  c.battery = counters_.battery;
+  c.esc_frames = counters_.esc_frames;
+  c.esc_rejected = counters_.esc_rejected;
+  c.esc_clamped = counters_.esc_clamped;
+  c.commands = counters_.commands;
+  c.commands_nonfinite = counters_.commands_nonfinite;
+  c.statuses = counters_.statuses;
+  c.can_publish_failures = counters_.can_publish_failures;
+  return c;
+}
+
+}  // namespace a3::bridge

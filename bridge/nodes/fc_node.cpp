@@ -1,0 +1,207 @@
+// The fc node: CAN sensors and commands in, ESC commands and status out.
+#include "bridge/nodes/fc_node.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "bridge/dronecan/messages.hpp"
+#include "bridge/nodes/esc_scaling.hpp"
+#include "bridge/nodes/fc_messages.hpp"
+#include "bridge/nodes/sensor_readings.hpp"
+#include "common/log.hpp"
+
+namespace a3::bridge {
+namespace {
+
+constexpr int64_t kNodeStatusPeriod_us = 1'000'000;
+
+int64_t period_us_of(double rate_hz, const char* what) {
+  if (!(rate_hz > 0.0 && rate_hz <= 10000.0)) {
+    throw std::invalid_argument(std::string("fc node: ") + what + " must be in (0, 10000] Hz, got " +
+                                std::to_string(rate_hz));
+  }
+  return std::llround(1e6 / rate_hz);
+}
+
+bool is_power_of_ten(uint64_t n) {
+  while (n >= 10 && n % 10 == 0) n /= 10;
+  return n == 1;
+}
+
+}  // namespace
+
+FcNode::FcNode(CanBus& can, FcNodeConfig config)
+    : config_(std::move(config)),
+      frame_(config_.home),
+      fc_(config_.params, config_.estimator_noise),
+      dronecan_(can, DroneCanNodeConfig{config_.node_id, {}, 500'000}) {
+  period_us_of(config_.params.control_rate_hz, "control_rate_hz");
+  period_us_of(config_.params.status_rate_hz, "status_rate_hz");
+  status_copy_ = fc_.status();
+}
+
+FcNode::~FcNode() { stop(); }
+
+double FcNode::now_s() const { return executor_->clock().now_s(); }
+
+void FcNode::reject(const char* what) {
+  const uint64_t n = ++counters_.sensor_rejected;
+  if (is_power_of_ten(n)) {
+    common::log_warn("fc", std::string("dropped an unusable ") + what + " message (" + std::to_string(n) +
+                               " sensor messages dropped so far)");
+  }
+}
+
+void FcNode::subscribe_sensors() {
+  dronecan_.subscribe<AhrsRawImu>([this](const AhrsRawImu& m, const ReceivedTransfer&) {
+    const auto r = imu_reading(m);
+    if (!r) return reject("ahrs.RawIMU");
+    ++counters_.imu;
+    last_imu_us_ = executor_->clock().now_us();
+    fc_.estimator().on_imu(now_s(), r->gyro_B_radps, r->accel_B_mps2);
+  });
+  dronecan_.subscribe<GnssFix2>([this](const GnssFix2& m, const ReceivedTransfer&) {
+    const auto r = gnss_reading(m, frame_);
+    if (!r) return reject("gnss.Fix2");
+    ++counters_.gnss;
+    last_gnss_us_ = executor_->clock().now_us();
+    fc_.estimator().on_gnss(now_s(), r->p_W_m, r->v_W_mps);
+  });
+  dronecan_.subscribe<StaticPressure>([this](const StaticPressure& m, const ReceivedTransfer&) {
+    const auto altitude = baro_altitude_m(m, config_.home.height_m);
+    if (!altitude) return reject("air_data.StaticPressure");
+    ++counters_.baro;
+    last_baro_us_ = executor_->clock().now_us();
+    fc_.estimator().on_baro(now_s(), *altitude);
+  });
+  dronecan_.subscribe<MagneticFieldStrength2>([this](const MagneticFieldStrength2& m, const ReceivedTransfer&) {
+    const auto field = magnetic_field_B(m);
+    if (!field) return reject("ahrs.MagneticFieldStrength2");
+    ++counters_.mag;
+    fc_.estimator().on_magnetometer(now_s(), *field);
+  });
+  dronecan_.subscribe<BatteryInfo>([this](const BatteryInfo& m, const ReceivedTransfer&) {
+    const auto percent = battery_percent(m);
+    if (!percent) return reject("power.BatteryInfo");
+    ++counters_.battery;
+    fc_.on_battery(now_s(), *percent);
+  });
+}
+
+void FcNode::start(common::Executor& executor, common::Bus&) {
+  if (executor_ != nullptr) throw std::logic_error("fc node: started twice");
+  executor_ = &executor;
+  subscribe_sensors();
+  dronecan_.subscribe<FcCommand>([this](const FcCommand& c, const ReceivedTransfer&) { on_command(c); });
+  dronecan_.publish_node_status_every(kNodeStatusPeriod_us);
+  dronecan_.set_mode(NodeStatus::kModeInitialization);
+  dronecan_.start(executor);
+
+  const int64_t now_us = executor.clock().now_us();
+  const int64_t control_us = period_us_of(config_.params.control_rate_hz, "control_rate_hz");
+  const int64_t status_us = period_us_of(config_.params.status_rate_hz, "status_rate_hz");
+  // On the grid of whole periods, as the dynamics node steps.
+  const int64_t first_step_us = (now_us / control_us + 1) * control_us;
+  timers_.push_back(executor.schedule(first_step_us, control_us, [this] { step(); }));
+  timers_.push_back(executor.schedule((now_us / status_us + 1) * status_us, status_us, [this] {
+    update_health();
+    publish_status();
+  }));
+  common::log_info("fc", "node " + std::to_string(config_.node_id) + " on " + dronecan_.bus().name() + ": control " +
+                             std::to_string(config_.params.control_rate_hz) + " Hz, status " +
+                             std::to_string(config_.params.status_rate_hz) + " Hz");
+}
+
+void FcNode::stop() {
+  if (executor_ == nullptr) return;
+  for (const auto id : timers_) executor_->cancel(id);
+  timers_.clear();
+  dronecan_.stop();
+  executor_ = nullptr;
+}
+
+void FcNode::on_command(const FcCommand& c) {
+  ++counters_.commands;
+  const bool heartbeat = c.command == FcCommand::kHeartbeat;
+  if (!heartbeat && have_command_seq_ && c.seq == last_command_seq_) {
+    // A retransmission: keeps the link alive, changes nothing, gets its status again.
+    ++counters_.commands_repeated;
+    fc_.on_command(FlightCommand{}, now_s());
+    publish_status();
+    return;
+  }
+  const FlightCommandResult result = fc_.on_command(flight_command_from_can(c), now_s());
+  if (heartbeat) {
+    ++counters_.heartbeats;
+    return;
+  }
+  have_command_seq_ = true;
+  last_command_seq_ = c.seq;
+  if (!result.accepted) {
+    ++counters_.commands_refused;
+    common::log_info("fc", "refused command " + std::to_string(c.command) + " (seq " + std::to_string(c.seq) +
+                               "): " + result.reason);
+  }
+  if (result.accepted && config_.step_on_command) step();
+  publish_status();
+}
+
+void FcNode::step() {
+  ++counters_.steps;
+  const FcOutput out = fc_.step(now_s());
+  EscRawCommand esc;
+  for (int i = 0; i < 4; ++i) esc.cmd.push_back(out.armed ? throttle_to_esc_raw(out.throttle[i]) : int16_t{0});
+  if (dronecan_.publish(esc, kPriorityHigh)) ++counters_.esc_published;
+}
+
+void FcNode::publish_status() {
+  const FlightStatus& s = fc_.status();
+  if (dronecan_.publish(fc_status_to_can(s))) ++counters_.status_published;
+  std::lock_guard<std::mutex> lock(status_mutex_);
+  status_copy_ = s;
+}
+
+void FcNode::update_health() {
+  const FlightStatus& s = fc_.status();
+  const int64_t now_us = executor_->clock().now_us();
+  const auto silent = [&](int64_t last_us) { return last_us < 0 || now_us - last_us > config_.sensor_timeout_us; };
+  uint8_t health = NodeStatus::kHealthOk;
+  if (s.failsafe == FcFailsafe::kLinkLoss || s.failsafe == FcFailsafe::kGeofence ||
+      s.failsafe == FcFailsafe::kAltitude || silent(last_imu_us_) || silent(last_baro_us_) ||
+      now_us - last_gnss_us_ > 5 * config_.sensor_timeout_us) {
+    health = NodeStatus::kHealthWarning;
+  }
+  if (s.failsafe == FcFailsafe::kLowBattery) health = NodeStatus::kHealthError;
+  if (s.mode == FcMode::kEmergency) health = NodeStatus::kHealthCritical;
+  dronecan_.set_health(health);
+  dronecan_.set_mode(fc_.estimator().state().valid() ? NodeStatus::kModeOperational
+                                                      : NodeStatus::kModeInitialization);
+  // Vendor status: the fc mode in the high byte, the failsafe in the low byte.
+  dronecan_.set_vendor_status(static_cast<uint16_t>((static_cast<unsigned>(s.mode) << 8) |
+                                                    static_cast<unsigned>(s.failsafe)));
+}
+
+FcNodeCounters FcNode::counters() const {
+  FcNodeCounters c;
+  c.steps = counters_.steps;
+  c.esc_published = counters_.esc_published;
+  c.status_published = counters_.status_published;
+  c.commands = counters_.commands;
+  c.heartbeats = counters_.heartbeats;
+  c.commands_refused = counters_.commands_refused;
+  c.commands_repeated = counters_.commands_repeated;
+  c.imu = counters_.imu;
+  c.gnss = counters_.gnss;
+  c.baro = counters_.baro;
+  c.mag = counters_.mag;
+  c.battery = counters_.battery;
+  c.sensor_rejected = counters_.sensor_rejected;
+  return c;
+}
+
+FlightStatus FcNode::status_snapshot() const {
+  std::lock_guard<std::mutex> lock(status_mutex_);
+  return status_copy_;
+}
+
+}  // namespace a3::bridge
