@@ -1,0 +1,364 @@
+// The conversation loop.
+#include "agent/conversation/conversation_node.hpp"
+
+#include <cmath>
+
+#include "a3lcm/episode_event_t.hpp"
+#include "agent/conversation/scripted_agent.hpp"
+#include "agent/link_protocol.hpp"
+#include "common/channels.hpp"
+#include "common/log.hpp"
+
+namespace a3::agent {
+namespace {
+
+constexpr int8_t kModeDisarmed = 0, kModeHold = 2;
+
+nlohmann::json timeout_observation(const nlohmann::json& action) {
+  if (action.value("type", "") == "a2a") {
+    return {{"task", action.value("task", "")},
+            {"from", action.value("to", "")},
+            {"status", "timeout"},
+            {"payload", nlohmann::json::object()}};
+  }
+  return {{"tool", action.value("name", "")}, {"result", {{"status", "timeout"}}}};
+}
+
+bool is_image_action(const nlohmann::json& action) {
+  return action.value("type", "") == "mcp" && action.value("name", "") == "capture_image" &&
+         !(action.contains("args") && action["args"].is_object() && action["args"].value("store_only", false));
+}
+
+}  // namespace
+
+ConversationNode::ConversationNode(ConversationConfig config, std::unique_ptr<Agent> agent, const ToolCatalog& tools)
+    : config_(std::move(config)), agent_(std::move(agent)), tools_(tools), tracker_(config_.mission) {
+  if (config_.min_turns < 2 || config_.max_turns < config_.min_turns) {
+    throw std::invalid_argument("conversation: turn budget must satisfy 2 <= min <= max, got " +
+                                std::to_string(config_.min_turns) + ".." + std::to_string(config_.max_turns));
+  }
+}
+
+ConversationNode::~ConversationNode() {
+  if (agent_thread_.joinable()) agent_thread_.join();
+}
+
+double ConversationNode::now_s() const { return executor_->clock().now_us() * 1e-6 - start_s_; }
+
+std::vector<Turn> ConversationNode::turns() const {
+  std::lock_guard<std::mutex> lock(turns_mutex_);
+  return turns_;
+}
+
+ConversationNode::Counters ConversationNode::counters() const {
+  return {counters_.actions_sent, counters_.observations, counters_.timeouts,
+          counters_.stale,        counters_.malformed,    counters_.heartbeats};
+}
+
+void ConversationNode::start(common::Executor& executor, common::Bus& bus) {
+  executor_ = &executor;
+  bus_ = &bus;
+  start_s_ = executor.clock().now_us() * 1e-6;
+  bus.subscribe<a3lcm::network_state_t>(common::channels::kNet, [this](const a3lcm::network_state_t& n, int64_t) {
+    net_ = n;
+    have_net_ = true;
+  });
+  bus.subscribe<a3lcm::link_message_t>(common::channels::kLinkDownRx,
+                                       [this](const a3lcm::link_message_t& m, int64_t) { on_downlink(m); });
+  bus.subscribe<a3lcm::vehicle_state_t>(common::channels::kState, [this](const a3lcm::vehicle_state_t& s, int64_t) {
+    tracker_.on_state(s);
+    if (!s.on_ground) has_flown_ = true;
+    const double speed = std::sqrt(s.v_W_mps[0] * s.v_W_mps[0] + s.v_W_mps[1] * s.v_W_mps[1] + s.v_W_mps[2] * s.v_W_mps[2]);
+    if (speed < config_.settle_speed_mps) {
+      if (still_since_s_ < 0.0) still_since_s_ = now_s();
+    } else {
+      still_since_s_ = -1.0;
+    }
+  });
+  bus.subscribe<a3lcm::fc_status_t>(common::channels::kFcStatus,
+                                    [this](const a3lcm::fc_status_t& s, int64_t) { tracker_.on_fc_status(s); });
+  bus.subscribe<a3lcm::payload_event_t>(common::channels::kPayload,
+                                        [this](const a3lcm::payload_event_t& e, int64_t) { tracker_.on_payload(e); });
+  bus.subscribe<a3lcm::traffic_state_t>(common::channels::kTraffic, [this](const a3lcm::traffic_state_t& t, int64_t) {
+    for (auto& known : traffic_) {
+      if (known.id == t.id) {
+        known = t;
+        return;
+      }
+    }
+    traffic_.push_back(t);
+  });
+  const auto hb_us = static_cast<int64_t>(config_.heartbeat_period_s * 1e6);
+  heartbeat_timer_ = executor.schedule(executor.clock().now_us() + hb_us, hb_us, [this] {
+    a3lcm::link_message_t hb;
+    hb.utime_us = executor_->clock().now_us();
+    hb.sent_utime_us = hb.utime_us;
+    hb.message_id = next_message_id_++;
+    hb.sender = config_.sender;
+    hb.kind = "heartbeat";
+    const std::string body = "{}";
+    hb.payload.assign(body.begin(), body.end());
+    hb.payload_length = static_cast<int32_t>(hb.payload.size());
+    hb.payload_size_bytes = 64;
+    bus_->publish(common::channels::kLinkUpTx, hb);
+    ++counters_.heartbeats;
+  });
+  executor.schedule_after(static_cast<int64_t>(config_.start_delay_s * 1e6), [this] { start_turn(); });
+}
+
+nlohmann::json ConversationNode::net_json() const {
+  if (!have_net_) {
+    return {{"slice", "URLLC"}, {"lat_ms", 0.0}, {"jitter_ms", 0.0}, {"loss_pct", 0.0}, {"throughput_mbps", 0.0}, {"edge_load", 0.0}};
+  }
+  return {{"slice", net_.slice},       {"lat_ms", net_.lat_ms},
+          {"jitter_ms", net_.jitter_ms}, {"loss_pct", net_.loss_pct},
+          {"throughput_mbps", net_.throughput_mbps}, {"edge_load", net_.edge_load}};
+}
+
+bool ConversationNode::settled() const {
+  const int8_t mode = tracker_.fc_status().mode;
+  return (mode == kModeHold || mode == kModeDisarmed) && still_since_s_ >= 0.0 &&
+         now_s() - still_since_s_ >= config_.settle_time_s;
+}
+
+AgentContext ConversationNode::make_context() const {
+  AgentContext c;
+  c.mission = &config_.mission;
+  c.initial_state = config_.initial_state;
+  c.airspace = config_.airspace_brief;
+  c.dialogue = &turns_;
+  c.tools = &tools_;
+  c.net = current_.net;
+  c.last_telemetry = last_telemetry_;
+  c.turn_number = current_.number;
+  c.max_turns = config_.max_turns;
+  c.mission_time_s = now_s();
+  return c;
+}
+
+void ConversationNode::start_turn() {
+  if (finished_) return;
+  current_ = Turn{};
+  current_.number = static_cast<int>(turns_.size()) + 1;
+  current_.speaker = current_.number % 2 == 1 ? "agent" : "user";
+  current_.net = net_json();
+  current_.started_s = now_s();
+  in_turn_ = true;
+  if (current_.speaker == "agent") {
+    start_agent_turn();
+  } else {
+    start_user_turn();
+  }
+}
+
+void ConversationNode::start_agent_turn() {
+  if (!config_.agent_runs_in_thread) {
+    AgentDecision d;
+    try {
+      d = agent_->decide(make_context());
+    } catch (const std::exception& e) {
+      d.error = e.what();
+    }
+    decided(std::move(d), -1.0);
+    return;
+  }
+  // The world keeps flying while the agent thinks on its own thread.
+  thread_started_s_ = now_s();
+  agent_done_ = false;
+  AgentContext context = make_context();
+  std::vector<Turn> dialogue_copy = turns();
+  agent_thread_ = std::thread([this, context, dialogue_copy]() mutable {
+    context.dialogue = &dialogue_copy;
+    try {
+      thread_decision_ = agent_->decide(context);
+    } catch (const std::exception& e) {
+      thread_decision_ = AgentDecision{};
+      thread_decision_.error = e.what();
+    }
+    agent_done_ = true;
+  });
+  poll_timer_ = executor_->schedule_every(10'000, [this] { poll_agent_thread(); });
+}
+
+void ConversationNode::poll_agent_thread() {
+  if (!agent_done_) return;
+  executor_->cancel(poll_timer_);
+  agent_thread_.join();
+  // The thinking time has already passed in the world: only the extra think time remains.
+  decided(std::move(thread_decision_), now_s() - thread_started_s_);
+}
+
+void ConversationNode::decided(AgentDecision d, double measured_s) {
+  const bool in_thread = measured_s >= 0.0;
+  const double wait_s = std::max(0.0, d.think_time_s + (in_thread ? 0.0 : d.latency_s));
+  current_.think_time_s = (in_thread ? measured_s : d.latency_s) + d.think_time_s;
+  current_.intent = d.intent.empty() ? (d.error.empty() ? "no_action" : "agent_error") : d.intent;
+  current_.text = d.error.empty() ? d.text : "agent error: " + d.error;
+  current_.usage = d.usage;
+  current_.attempts = d.attempts;
+  nlohmann::json actions = d.actions.is_array() ? d.actions : nlohmann::json::array();
+  if (!d.error.empty()) common::log_warn("conversation", "turn " + std::to_string(current_.number) + ": " + d.error);
+  executor_->schedule_after(static_cast<int64_t>(wait_s * 1e6), [this, actions] {
+    current_.decided_s = now_s();
+    dispatch(actions);
+  });
+}
+
+void ConversationNode::start_user_turn() {
+  user_wait_started_s_ = now_s();
+  user_timer_ = executor_->schedule_every(250'000, [this] { wait_for_user_trigger(); });
+}
+
+void ConversationNode::wait_for_user_trigger() {
+  const double waited = now_s() - user_wait_started_s_;
+  if (waited < config_.user_min_wait_s) return;
+  SupervisorView v;
+  v.mission = &config_.mission;
+  v.progress = tracker_.to_json();
+  v.net = net_json();
+  const bool hard = is_hard_network(v.net);
+  v.network_degraded = hard && !degraded_at_last_user_turn_;
+  const auto& s = tracker_.state();
+  double nearest = 1e18;
+  std::string nearest_id;
+  for (const auto& t : traffic_) {
+    const double d = std::sqrt(std::pow(t.p_W_m[0] - s.p_W_m[0], 2) + std::pow(t.p_W_m[1] - s.p_W_m[1], 2) +
+                               std::pow(t.p_W_m[2] - s.p_W_m[2], 2));
+    if (d < nearest) {
+      nearest = d;
+      nearest_id = t.id;
+    }
+  }
+  if (nearest < config_.traffic_alert_distance_m && !s.on_ground) {
+    v.traffic_alert = nearest_id + " at " + std::to_string(static_cast<int>(nearest)) + " m";
+  }
+  v.landed_after_flight = has_flown_ && s.on_ground && !tracker_.fc_status().armed;
+  int done = 0;
+  std::string names;
+  for (std::size_t i = 0; i < tracker_.progress().size(); ++i) {
+    if (tracker_.progress()[i].done) {
+      ++done;
+      names += (names.empty() ? "" : ", ") + config_.mission.objectives[i].id;
+    }
+  }
+  v.objectives_newly_done = done - done_at_last_user_turn_;
+  v.newly_done_names = names;
+  v.turn_number = current_.number;
+  v.max_turns = config_.max_turns;
+  const bool trigger = settled() || v.objectives_newly_done > 0 || v.network_degraded || !v.traffic_alert.empty() ||
+                       v.landed_after_flight || waited >= config_.user_max_wait_s;
+  if (!trigger) return;
+  executor_->cancel(user_timer_);
+  degraded_at_last_user_turn_ = hard;
+  done_at_last_user_turn_ = done;
+  const UserUtterance u = user_.speak(v);
+  current_.intent = u.intent;
+  current_.text = u.text;
+  current_.decided_s = now_s();
+  dispatch(u.actions);
+}
+
+void ConversationNode::dispatch(const nlohmann::json& actions) {
+  current_.actions = actions;
+  current_.obs = nlohmann::json::array();
+  pending_.assign(actions.size(), Pending{});
+  for (std::size_t i = 0; i < actions.size(); ++i) current_.obs.push_back(nullptr);
+  if (actions.empty()) {
+    complete_turn();
+    return;
+  }
+  for (std::size_t i = 0; i < actions.size(); ++i) {
+    ActionEnvelope env{current_.number, static_cast<int>(i), actions[i]};
+    const auto msg = encode_action(env, next_message_id_++, executor_->clock().now_us(), config_.sender);
+    bus_->publish(common::channels::kLinkUpTx, msg);
+    ++counters_.actions_sent;
+    const double timeout_s = is_image_action(actions[i]) ? config_.image_timeout_s : config_.observation_timeout_s;
+    pending_[i].timer = executor_->schedule_after(static_cast<int64_t>(timeout_s * 1e6), [this, i] { on_action_timeout(i); });
+  }
+}
+
+void ConversationNode::on_downlink(const a3lcm::link_message_t& m) {
+  std::string error;
+  auto env = decode_observation(m, &error);
+  if (!env) {
+    ++counters_.malformed;
+    common::log_warn("conversation", "dropped a downlink message: " + error);
+    return;
+  }
+  if (!in_turn_ || env->turn != current_.number || env->action_index < 0 ||
+      static_cast<std::size_t>(env->action_index) >= pending_.size() || pending_[env->action_index].done) {
+    ++counters_.stale;
+    return;
+  }
+  const auto i = static_cast<std::size_t>(env->action_index);
+  pending_[i].done = true;
+  executor_->cancel(pending_[i].timer);
+  current_.obs[i] = env->obs;
+  ++counters_.observations;
+  if (env->obs.value("tool", "") == "read_telemetry" && env->obs.contains("result")) last_telemetry_ = env->obs["result"];
+  for (const auto& p : pending_) {
+    if (!p.done) return;
+  }
+  complete_turn();
+}
+
+void ConversationNode::on_action_timeout(std::size_t i) {
+  if (i >= pending_.size() || pending_[i].done) return;
+  pending_[i].done = true;
+  current_.obs[i] = timeout_observation(current_.actions[i]);
+  ++counters_.timeouts;
+  for (const auto& p : pending_) {
+    if (!p.done) return;
+  }
+  complete_turn();
+}
+
+void ConversationNode::publish_turn(const Turn& t) {
+  nlohmann::json detail = t.to_json();
+  detail["_rig"] = {{"started_s", t.started_s}, {"decided_s", t.decided_s}, {"finished_s", t.finished_s},
+                    {"think_time_s", t.think_time_s}, {"usage", t.usage}, {"attempts", t.attempts}, {"text", t.text}};
+  a3lcm::episode_event_t ev;
+  ev.utime_us = executor_->clock().now_us();
+  ev.turn = t.number;
+  ev.speaker = t.speaker;
+  ev.kind = "turn_end";
+  ev.status = "running";
+  ev.detail_json = detail.dump();
+  bus_->publish(common::channels::kEpisode, ev);
+}
+
+void ConversationNode::complete_turn() {
+  in_turn_ = false;
+  current_.finished_s = now_s();
+  {
+    std::lock_guard<std::mutex> lock(turns_mutex_);
+    turns_.push_back(current_);
+  }
+  publish_turn(current_);
+  const int t = current_.number;
+  const bool landed = has_flown_ && tracker_.state().on_ground && !tracker_.fc_status().armed;
+  if (t >= config_.max_turns) {
+    finish("turn budget used");
+    return;
+  }
+  if (t >= config_.min_turns && current_.speaker == "user" && landed) {
+    finish("the vehicle has landed");
+    return;
+  }
+  start_turn();
+}
+
+void ConversationNode::finish(const std::string& why) {
+  // The ground station stays on the air (heartbeats) until the episode ends.
+  finished_ = true;
+  a3lcm::episode_event_t ev;
+  ev.utime_us = executor_->clock().now_us();
+  ev.turn = static_cast<int32_t>(turns_.size());
+  ev.speaker = "rig";
+  ev.kind = "dialogue_end";
+  ev.status = "running";
+  ev.detail_json = nlohmann::json({{"reason", why}}).dump();
+  bus_->publish(common::channels::kEpisode, ev);
+}
+
+}  // namespace a3::agent

@@ -1,0 +1,139 @@
+// The ground side of an episode: runs the conversation of SPEC §1 — strict alternation
+// starting with the agent, 8..12 turns — between an agent and the simulated supervisor. Each
+// turn takes n_t from A3_NET; the speaker's actions go up the emulated link (A3_LINK_UP_TX)
+// and the turn ends when every observation has come down (A3_LINK_DOWN_RX) or timed out. The
+// agent's latency passes in the simulated world before its actions leave. Between turns the
+// world keeps flying: the supervisor speaks when the vehicle has settled, an objective is
+// done, the link degrades, traffic comes close, or after a maximum wait. Completed turns go
+// out on A3_EPISODE; command heartbeats go up the link every second.
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "a3lcm/fc_status_t.hpp"
+#include "a3lcm/link_message_t.hpp"
+#include "a3lcm/network_state_t.hpp"
+#include "a3lcm/payload_event_t.hpp"
+#include "a3lcm/traffic_state_t.hpp"
+#include "a3lcm/vehicle_state_t.hpp"
+#include "agent/conversation/agent.hpp"
+#include "agent/conversation/simulated_user.hpp"
+#include "agent/mission/mission_tracker.hpp"
+#include "common/node.hpp"
+
+namespace a3::agent {
+
+struct ConversationConfig {
+  Mission mission;
+  nlohmann::json initial_state;     // the scenario's α³-Bench initial_state
+  nlohmann::json airspace_brief;    // what agents are told of no-fly zones and traffic
+  int min_turns = 8;
+  int max_turns = 12;
+  double start_delay_s = 2.0;       // first turn: after the sensors and estimator settle
+  double observation_timeout_s = 15.0;
+  double image_timeout_s = 120.0;
+  double user_min_wait_s = 3.0;
+  double user_max_wait_s = 120.0;
+  double settle_speed_mps = 0.3;
+  double settle_time_s = 3.0;
+  double heartbeat_period_s = 1.0;
+  double traffic_alert_distance_m = 120.0;
+  // Real time with an agent whose decide() blocks (an HTTP call): run it on a thread so the
+  // world keeps flying, and charge its real duration. Otherwise decide() runs in place and its
+  // declared latency is charged.
+  bool agent_runs_in_thread = false;
+  std::string sender = "ground_station";
+};
+
+class ConversationNode final : public common::Node {
+ public:
+  ConversationNode(ConversationConfig config, std::unique_ptr<Agent> agent,
+                   const ToolCatalog& tools = ToolCatalog::builtin());
+  ~ConversationNode() override;
+
+  std::string name() const override { return "conversation"; }
+  void start(common::Executor& executor, common::Bus& bus) override;
+
+  bool finished() const { return finished_.load(); }
+  // Snapshots, safe from any thread.
+  std::vector<Turn> turns() const;
+  struct Counters {
+    uint64_t actions_sent = 0;
+    uint64_t observations = 0;
+    uint64_t timeouts = 0;
+    uint64_t stale_observations = 0;  // for an earlier turn, arrived too late
+    uint64_t malformed = 0;
+    uint64_t heartbeats = 0;
+  };
+  Counters counters() const;
+
+ private:
+  struct Pending {
+    bool done = false;
+    common::TimerId timer = 0;
+  };
+  void start_turn();
+  void start_agent_turn();
+  void poll_agent_thread();
+  void decided(AgentDecision decision, double extra_delay_s);
+  void start_user_turn();
+  void wait_for_user_trigger();
+  void dispatch(const nlohmann::json& actions);
+  void on_downlink(const a3lcm::link_message_t& m);
+  void on_action_timeout(std::size_t index);
+  void complete_turn();
+  void publish_turn(const Turn& t);
+  void finish(const std::string& why);
+  AgentContext make_context() const;
+  nlohmann::json net_json() const;
+  double now_s() const;
+  bool settled() const;
+
+  ConversationConfig config_;
+  std::unique_ptr<Agent> agent_;
+  const ToolCatalog& tools_;
+  SimulatedUser user_;
+  MissionTracker tracker_;
+  common::Executor* executor_ = nullptr;
+  common::Bus* bus_ = nullptr;
+  double start_s_ = 0.0;
+
+  mutable std::mutex turns_mutex_;
+  std::vector<Turn> turns_;
+  Turn current_;
+  std::vector<Pending> pending_;
+  bool in_turn_ = false;
+  int64_t next_message_id_ = 1;
+
+  a3lcm::network_state_t net_{};
+  bool have_net_ = false;
+  bool degraded_at_last_user_turn_ = false;
+  double still_since_s_ = -1.0;
+  double user_wait_started_s_ = 0.0;
+  int done_at_last_user_turn_ = 0;
+  bool has_flown_ = false;
+  nlohmann::json last_telemetry_;
+  std::vector<a3lcm::traffic_state_t> traffic_;
+
+  // A decision running on a thread (real time, blocking agent).
+  std::thread agent_thread_;
+  std::atomic<bool> agent_done_{false};
+  AgentDecision thread_decision_;
+  double thread_started_s_ = 0.0;
+  common::TimerId poll_timer_ = 0;
+  common::TimerId user_timer_ = 0;
+  common::TimerId heartbeat_timer_ = 0;
+
+  std::atomic<bool> finished_{false};
+  struct AtomicCounters {
+    std::atomic<uint64_t> actions_sent{0}, observations{0}, timeouts{0}, stale{0}, malformed{0}, heartbeats{0};
+  } counters_;
+};
+
+}  // namespace a3::agent

@@ -1,0 +1,42 @@
+// The scripted agent: our reference policy, a competent operator written as rules. From the
+// mission it plans a short sequence of turns — pre-flight checks (telemetry, geofence,
+// weather, a route around no-fly zones from the ground station, a collision-avoidance
+// exchange with conflicting traffic), take-off and the objectives' legs (surveys as onboard
+// lawnmowers, image points, deliveries), return and landing — and adapts every turn to the
+// network: on a hard link it asks for URLLC for control and keeps images on board until the
+// link is good again, then hands them over.
+#pragma once
+
+#include <deque>
+#include <string>
+#include <vector>
+
+#include "agent/conversation/agent.hpp"
+
+namespace a3::agent {
+
+class ScriptedAgent final : public Agent {
+ public:
+  ScriptedAgent() = default;
+  std::string name() const override { return "scripted"; }
+  AgentDecision decide(const AgentContext& context) override;
+
+ private:
+  struct Step {
+    std::string intent;
+    std::string text;
+    std::vector<nlohmann::json> actions;
+  };
+  void plan(const AgentContext& context);
+  std::vector<nlohmann::json> route_from_path_plan(const AgentContext& context) const;
+
+  bool planned_ = false;
+  std::deque<Step> steps_;
+  bool images_held_ = false;  // captures kept on board while the link was poor
+  bool detour_flown_ = false;  // the ground station's route has been used
+};
+
+// The SPEC §2 "hard" test on an n_t object.
+bool is_hard_network(const nlohmann::json& net);
+
+}  // namespace a3::agent

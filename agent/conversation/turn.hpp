@@ -1,0 +1,32 @@
+// One turn of a conversational episode (SPEC §1): who speaks, the intent, the structured
+// actions, one observation per action, and the 6G network vector n_t at the turn.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace a3::agent {
+
+struct Turn {
+  int number = 0;             // 1-based
+  std::string speaker;        // "agent" | "user"
+  std::string intent;
+  nlohmann::json actions = nlohmann::json::array();
+  nlohmann::json obs = nlohmann::json::array();
+  nlohmann::json net = nlohmann::json::object();  // slice, lat_ms, jitter_ms, loss_pct, throughput_mbps, edge_load
+  // What only the rig knows (the episode's _rig section).
+  double started_s = 0.0;       // mission time when the turn began
+  double decided_s = 0.0;       // when the speaker's decision was ready (after think time)
+  double finished_s = 0.0;      // when the last observation arrived (or timed out)
+  double think_time_s = 0.0;    // latency charged to the turn (measured or declared)
+  nlohmann::json usage = nlohmann::json::object();  // tokens, for LLM agents
+  int attempts = 1;
+  std::string text;             // what the speaker said, in words
+
+  // The α³-Bench turn object.
+  nlohmann::json to_json() const;
+};
+
+}  // namespace a3::agent
