@@ -1,0 +1,125 @@
+// Query tools: read_telemetry (the fc's estimate and the link's n_t) and check_geofence.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include "agent/vehicle/observation_json.hpp"
+#include "agent/vehicle/tool_server_node.hpp"
+
+namespace a3::agent {
+namespace {
+
+const std::vector<std::string> kTelemetryFields = {"time_s", "pose",      "velocity", "speed_mps", "battery_pct",
+                                                   "mode",   "armed",     "failsafe", "link",      "route"};
+
+nlohmann::json finite_or_null(double x, int decimals) {
+  if (!std::isfinite(x)) return nullptr;
+  return rounded(x, decimals);
+}
+
+std::string field_list() {
+  std::string out;
+  for (const auto& f : kTelemetryFields) out += (out.empty() ? "" : ", ") + f;
+  return out;
+}
+
+}  // namespace
+
+void ToolServerNode::tool_read_telemetry(const nlohmann::json& args) {
+  std::set<std::string> wanted;
+  if (args.contains("fields")) {
+    const auto& fields = args["fields"];
+    for (std::size_t i = 0; i < fields.size(); ++i) {
+      const std::string f = fields[i].get<std::string>();
+      if (std::find(kTelemetryFields.begin(), kTelemetryFields.end(), f) == kTelemetryFields.end()) {
+        return finish_error("args/fields/" + std::to_string(i) + ": unknown field '" + f + "'; the fields are: " +
+                            field_list());
+      }
+      wanted.insert(f);
+    }
+  }
+  if (!fc_status_) {
+    return finish_mcp({{"status", "error"}, {"error", "no telemetry from the flight controller yet"}});
+  }
+  const auto& s = *fc_status_;
+  const Eigen::Vector3d v(s.v_W_mps[0], s.v_W_mps[1], s.v_W_mps[2]);
+  nlohmann::json link = nullptr;
+  if (net_) {
+    link = {{"slice", net_->slice},
+            {"lat_ms", rounded(net_->lat_ms, 2)},
+            {"jitter_ms", rounded(net_->jitter_ms, 2)},
+            {"loss_pct", rounded(net_->loss_pct, 3)},
+            {"throughput_mbps", rounded(net_->throughput_mbps, 2)},
+            {"edge_load", rounded(net_->edge_load, 3)},
+            {"degraded", net_->degraded}};
+    if (!net_->pending_slice.empty()) link["pending_slice"] = net_->pending_slice;
+  }
+  nlohmann::json route = nullptr;
+  if (route_) {
+    route = {{"name", route_->name()},
+             {"waypoint", route_->index() + 1},
+             {"of", route_->points().size()},
+             {"target", point_json(route_->current().p_W_m)}};
+  }
+  nlohmann::json result = {{"time_s", rounded(executor_->clock().now_s(), 2)},
+                           {"pose", pose_json(*position(), s.yaw_deg)},
+                           {"velocity", {{"vx", rounded(v.x())}, {"vy", rounded(v.y())}, {"vz", rounded(v.z())}}},
+                           {"speed_mps", rounded(v.norm())},
+                           {"battery_pct", rounded(s.battery_pct, 1)},
+                           {"mode", fc_mode_name(s.mode)},
+                           {"armed", s.armed},
+                           {"failsafe", fc_failsafe_name(s.failsafe)},
+                           {"link", link},
+                           {"route", route}};
+  if (!wanted.empty()) {
+    nlohmann::json picked = nlohmann::json::object();
+    for (const auto& f : wanted) picked[f] = result[f];
+    result = std::move(picked);
+  }
+  finish_mcp(result);
+}
+
+void ToolServerNode::tool_check_geofence(const nlohmann::json& args) {
+  const auto here = position();
+  const bool all_given = args.contains("x") && args.contains("y") && args.contains("z");
+  if (!here && !all_given) {
+    return finish_error("args: give x, y and z: the vehicle's position is not known yet");
+  }
+  const auto coord = [&](const char* key, int k) { return args.contains(key) ? args[key].get<double>() : (*here)[k]; };
+  const Eigen::Vector3d p(coord("x", 0), coord("y", 1), coord("z", 2));
+  const Airspace& air = config_.airspace;
+  const Eigen::Vector2d xy = p.head<2>();
+  const bool inside = air.inside_geofence(xy);
+  const bool altitude_ok = air.altitude_ok(p.z());
+  const NoFlyZone* in_zone = air.zone_containing(p);
+  nlohmann::json nearest = nullptr;
+  double nearest_d = std::numeric_limits<double>::infinity();
+  for (const auto& z : air.no_fly_zones) {
+    const double d = std::max(z.clearance_m(xy), 0.0);
+    if (d < nearest_d) {
+      nearest_d = d;
+      const char* vertical = p.z() > z.ceiling_m ? "above" : p.z() < z.floor_m ? "below" : "within";
+      nearest = {{"id", z.id}, {"distance_m", rounded(d, 1)}, {"vertical", vertical}};
+    }
+  }
+  const std::string gate_reason = gate_.check_target(p, "point");
+  const char* status = in_zone != nullptr ? "in_no_fly_zone"
+                       : !inside          ? "outside_geofence"
+                       : !altitude_ok     ? "outside_altitude_envelope"
+                                          : "inside_geofence";
+  nlohmann::json result = {{"status", status},
+                           {"point", point_json(p)},
+                           {"inside_geofence", inside},
+                           {"distance_to_boundary_m", finite_or_null(air.geofence_clearance_m(xy), 1)},
+                           {"altitude_ok", altitude_ok},
+                           {"alt_bounds", {finite_or_null(air.min_altitude_m, 1), finite_or_null(air.max_altitude_m, 1)}},
+                           {"nfz_violation", in_zone != nullptr},
+                           {"in_zone", in_zone != nullptr ? nlohmann::json(in_zone->id) : nlohmann::json(nullptr)},
+                           {"nearest_nfz", nearest},
+                           {"flyable", gate_reason.empty()}};
+  if (!gate_reason.empty()) result["why_not_flyable"] = gate_reason;
+  finish_mcp(result);
+}
+
+}  // namespace a3::agent
