@@ -24,6 +24,7 @@
 #include "linkemu/link_emulator_node.hpp"
 #include "linkemu/link_record_log.hpp"
 #include "linkemu/profile_fit.hpp"
+#include "linkemu/realtime_priority.hpp"
 #include "linkemu/slice_profile.hpp"
 #include "rigs/cli/command_registry.hpp"
 
@@ -54,6 +55,7 @@ struct LinkemuArgs {
   int64_t clock_epoch_mono_ns = -1;
   double duration_s = 0.0;
   double stats_every_s = 10.0;
+  int rt_priority = 0;
   bool print_profiles = false;
   bool fit_profiles = false;
 };
@@ -145,17 +147,24 @@ int run_linkemu(const LinkemuArgs& args) {
     log = std::make_unique<linkemu::LinkRecordLog>(args.records);
     node.add_record_sink([&log](const a3lcm::link_record_t& r) { log->write(r); });
   }
-  common::RealTimeNodeThread thread(node, clock, args.lcm_url);
-  if (thread.bus().url().rfind("udpm://", 0) == 0) thread.bus().check_loopback(1000);
-  if (args.stats_every_s > 0.0) {
-    const auto period_us = static_cast<int64_t>(args.stats_every_s * 1e6);
-    thread.executor().schedule_every(period_us, [&node] {
-      common::log_info("linkemu", linkemu::summary(node.stats()));
-    });
+  std::unique_ptr<common::RealTimeNodeThread> node_thread;
+  {
+    // Threads created in this scope (LCM's receive thread, the executor's) run SCHED_FIFO.
+    const linkemu::ScopedRealtimePriority realtime(args.rt_priority);
+    node_thread = std::make_unique<common::RealTimeNodeThread>(node, clock, args.lcm_url);
+    if (node_thread->bus().url().rfind("udpm://", 0) == 0) node_thread->bus().check_loopback(1000);
+    if (args.stats_every_s > 0.0) {
+      const auto period_us = static_cast<int64_t>(args.stats_every_s * 1e6);
+      node_thread->executor().schedule_every(period_us, [&node] {
+        common::log_info("linkemu", linkemu::summary(node.stats()));
+      });
+    }
+    std::fprintf(stderr, "a3rig node linkemu: on %s, %s%s; Ctrl-C to stop\n",
+                 node_thread->bus().url().c_str(), node.describe_source().c_str(),
+                 args.rt_priority > 0 ? (", SCHED_FIFO " + std::to_string(args.rt_priority)).c_str() : "");
+    node_thread->start();
   }
-  std::fprintf(stderr, "a3rig node linkemu: on %s, %s; Ctrl-C to stop\n",
-               thread.bus().url().c_str(), node.describe_source().c_str());
-  thread.start();
+  common::RealTimeNodeThread& thread = *node_thread;
 
   const double wall_limit_s = args.duration_s > 0.0 ? args.duration_s / args.real_time_factor : 0.0;
   const int64_t start_ns = common::WallClock::monotonic_now_ns();
@@ -245,6 +254,10 @@ A3_REGISTER_COMMAND("50-node-linkemu", [](CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--stats-every-s", args->stats_every_s, "log the counters this often (default 10; 0: never)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--rt-priority", args->rt_priority,
+                  "run the node's threads SCHED_FIFO at this priority (1-99; needs root or "
+                  "CAP_SYS_NICE): keeps deliveries on time when the CPUs are busy (default 0: off)")
+      ->check(CLI::Range(0, 99));
   cmd->add_flag("--print-profiles", args->print_profiles, "print the slice profiles in use (JSON) and exit");
   cmd->add_flag("--fit-profiles", args->fit_profiles,
                 "refit the profiles' fitted fields to their SPEC §6 targets, print the JSON and exit");
