@@ -76,10 +76,7 @@ void ScriptedAgent::plan(const AgentContext& c) {
                               {{"start", {m.home_W_m.x(), m.home_W_m.y()}}, {"goal", {goal.x(), goal.y()}}, {"z", z}}));
   }
   if (c.airspace.contains("traffic") && !c.airspace["traffic"].empty()) {
-    pre.actions.push_back(a2a("collision_avoidance", "uav_swarm_agent",
-                              {{"pose", {{"x", m.home_W_m.x()}, {"y", m.home_W_m.y()}, {"z", 0.0}}},
-                               {"intent", "climb to " + std::to_string(static_cast<int>(z)) + " m and fly the mission"},
-                               {"request", "yield"}}));
+    pre.actions.push_back(a2a("swarm_status_check", "uav_swarm_agent"));
   }
   steps_.push_back(pre);
 
@@ -156,21 +153,36 @@ AgentDecision ScriptedAgent::decide(const AgentContext& c) {
     steps_.pop_front();
   }
 
-  // The first leg follows the ground station's route around no-fly zones, if it gave one.
+  // The first leg follows the ground station's route around no-fly zones, if it gave one:
+  // the route replaces the motion toward the first objective.
   std::vector<nlohmann::json> actions;
   for (auto& a : step.actions) {
-    if (a.value("name", "") == "execute_maneuver" || a.value("name", "") == "set_waypoint" ||
-        a.value("name", "") == "navigate_to") {
-      auto route = route_from_path_plan(c);
-      if (!route.empty() && !detour_flown_) {
-        detour_flown_ = true;
-        actions.push_back(mcp("navigate_to", {{"waypoints", route}}));
-        // The objective's own action waits for the next turn, after the detour.
-        steps_.push_front({step.intent, step.text, {a}});
-        continue;
+    const std::string name = a.value("name", "");
+    auto route = route_from_path_plan(c);
+    if (!route.empty() && !detour_flown_ && (name == "set_waypoint" || name == "navigate_to")) {
+      detour_flown_ = true;
+      detour_ = route;
+      if (name == "set_waypoint") {
+        route.back() = {a["args"]["x"], a["args"]["y"], a["args"]["z"]};
       }
+      actions.push_back(mcp("navigate_to", {{"waypoints", route}}));
+      continue;
+    }
+    // Going home past a no-fly zone: fly the detour backwards, then land at home.
+    if (name == "return_to_home" && !detour_.empty()) {
+      std::vector<nlohmann::json> back(detour_.rbegin(), detour_.rend());
+      const Mission& m = *c.mission;
+      back.push_back({m.home_W_m.x(), m.home_W_m.y(), m.cruise_altitude_m});
+      actions.push_back(mcp("navigate_to", {{"waypoints", back}}));
+      steps_.push_front({"land_at_home", "Back over the launch point: landing.", {mcp("land")}});
+      continue;
     }
     actions.push_back(a);
+  }
+  // Traffic reported close by the supervisor: negotiate separation first.
+  if (!c.dialogue->empty() && c.dialogue->back().speaker == "user" && c.dialogue->back().intent == "traffic_alert") {
+    actions.insert(actions.begin(), a2a("collision_avoidance", "uav_swarm_agent",
+                                        {{"intent", "hold position for the mission"}, {"request", "yield"}}));
   }
 
   // Network adaptation: URLLC for control on a hard link; images stay on board until it is good.

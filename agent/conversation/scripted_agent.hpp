@@ -4,7 +4,8 @@
 // exchange with conflicting traffic), take-off and the objectives' legs (surveys as onboard
 // lawnmowers, image points, deliveries), return and landing — and adapts every turn to the
 // network: on a hard link it asks for URLLC for control and keeps images on board until the
-// link is good again, then hands them over.
+// link is good again, then hands them over. When the supervisor reports traffic close by, it
+// asks the swarm for separation (A2A collision_avoidance) before anything else.
 #pragma once
 
 #include <deque>
@@ -34,6 +35,7 @@ class ScriptedAgent final : public Agent {
   std::deque<Step> steps_;
   bool images_held_ = false;  // captures kept on board while the link was poor
   bool detour_flown_ = false;  // the ground station's route has been used
+  std::vector<nlohmann::json> detour_;  // that route, to fly back along
 };
 
 // The SPEC §2 "hard" test on an n_t object.

@@ -1,6 +1,7 @@
 // Mission objectives from events.
 #include "agent/mission/mission_tracker.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace a3::agent {
@@ -35,8 +36,13 @@ void MissionTracker::on_state(const a3lcm::vehicle_state_t& s) {
   last_state_t_s_ = t_s;
   state_ = s;
   have_state_ = true;
+  const bool thermal_on = std::find(active_sensors_.begin(), active_sensors_.end(), "thermal") != active_sensors_.end();
   for (std::size_t i = 0; i < mission_.objectives.size(); ++i) {
     const Objective& o = mission_.objectives[i];
+    if (o.type == ObjectiveType::kThermalSearch && !progress_[i].done && thermal_on &&
+        (xy(s.p_W_m) - o.hidden_target).norm() <= o.radius_m && s.p_W_m[2] <= o.altitude_m + 40.0 && !s.on_ground) {
+      mark(i, t_s, "target seen by the thermal camera");
+    }
     if (o.type != ObjectiveType::kDelivery || progress_[i].done) continue;
     const bool over_point = (xy(s.p_W_m) - o.point).norm() <= o.radius_m && s.p_W_m[2] <= o.drop_altitude_m;
     progress_[i].dwell_s = over_point ? progress_[i].dwell_s + dt : 0.0;
@@ -70,6 +76,16 @@ void MissionTracker::update_landing() {
 }
 
 void MissionTracker::on_payload(const a3lcm::payload_event_t& e) {
+  if (e.kind == "activated") {
+    if (std::find(active_sensors_.begin(), active_sensors_.end(), e.sensor) == active_sensors_.end()) {
+      active_sensors_.push_back(e.sensor);
+    }
+    return;
+  }
+  if (e.kind == "deactivated") {
+    active_sensors_.erase(std::remove(active_sensors_.begin(), active_sensors_.end(), e.sensor), active_sensors_.end());
+    return;
+  }
   if (e.kind != "capture") return;
   const double t_s = e.utime_us * 1e-6;
   const Eigen::Vector2d p = xy(e.p_W_m);

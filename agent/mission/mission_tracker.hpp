@@ -1,7 +1,9 @@
 // What a mission has achieved, from what really happened: image captures (payload events with
 // the true position), the true trajectory, and the flight controller's state. Survey, image and
 // search objectives are achieved once and stay achieved; return-and-land holds while the
-// vehicle is disarmed on the ground near home.
+// vehicle is disarmed on the ground near home. A thermal search finds its target when the
+// active thermal camera passes within the objective's radius of it (at most 40 m above the
+// objective's altitude), or when a thermal capture is taken there.
 #pragma once
 
 #include <Eigen/Core>
@@ -51,6 +53,7 @@ class MissionTracker {
   Mission mission_;
   std::vector<ObjectiveProgress> progress_;
   a3lcm::vehicle_state_t state_{};
+  std::vector<std::string> active_sensors_;
   a3lcm::fc_status_t fc_{};
   bool have_state_ = false;
   double last_state_t_s_ = -1.0;

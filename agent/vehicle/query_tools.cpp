@@ -52,7 +52,7 @@ void ToolServerNode::tool_read_telemetry(const nlohmann::json& args) {
             {"loss_pct", rounded(net_->loss_pct, 3)},
             {"throughput_mbps", rounded(net_->throughput_mbps, 2)},
             {"edge_load", rounded(net_->edge_load, 3)},
-            {"degraded", net_->degraded}};
+            {"degraded", net_->degraded != 0}};
     if (!net_->pending_slice.empty()) link["pending_slice"] = net_->pending_slice;
   }
   nlohmann::json route = nullptr;
@@ -68,7 +68,7 @@ void ToolServerNode::tool_read_telemetry(const nlohmann::json& args) {
                            {"speed_mps", rounded(v.norm())},
                            {"battery_pct", rounded(s.battery_pct, 1)},
                            {"mode", fc_mode_name(s.mode)},
-                           {"armed", s.armed},
+                           {"armed", s.armed != 0},
                            {"failsafe", fc_failsafe_name(s.failsafe)},
                            {"link", link},
                            {"route", route}};

@@ -27,7 +27,7 @@ SelfView ToolServerNode::self_view() const {
 
   std::vector<Eigen::Vector3d> targets;
   double speed = speed_mps_;
-  const int8_t mode = fc_status_ ? fc_status_->mode : a3lcm::fc_status_t::HOLD;
+  const int8_t mode = fc_status_ ? fc_status_->mode : static_cast<int8_t>(a3lcm::fc_status_t::HOLD);
   bool extrapolate = false;
   if (route_) {
     targets = route_->remaining();
