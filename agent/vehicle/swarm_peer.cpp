@@ -228,8 +228,8 @@ PeerAnswer SwarmPeer::swarm_formation(const SelfView& self, const nlohmann::json
       declined.push_back({{"id", peer.plan.id}, {"reason", "it is " + status}});
     } else if (d > config_.formation_radius_m) {
       declined.push_back({{"id", peer.plan.id},
-                          {"reason", self.known ? "too far: " + std::to_string(static_cast<int>(d)) + " m > " +
-                                                      std::to_string(static_cast<int>(config_.formation_radius_m)) + " m"
+                          {"reason", self.known ? "too far: " + std::to_string(std::lround(d)) + " m > " +
+                                                      std::to_string(std::lround(config_.formation_radius_m)) + " m"
                                                 : "your position is unknown"}});
     } else {
       accepted.push_back(peer.plan.id);
