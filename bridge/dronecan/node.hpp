@@ -46,6 +46,7 @@ class DroneCanNode {
 
   // Throws std::invalid_argument for a node ID outside 1..127. The bus must outlive the node.
   DroneCanNode(CanBus& bus, DroneCanNodeConfig config);
+  DroneCanNode(CanBus& bus, uint8_t node_id) : DroneCanNode(bus, config_for(node_id)) {}
   ~DroneCanNode();
   DroneCanNode(const DroneCanNode&) = delete;
   DroneCanNode& operator=(const DroneCanNode&) = delete;
@@ -101,6 +102,11 @@ class DroneCanNode {
   CanBus& bus() { return bus_; }
 
  private:
+  static DroneCanNodeConfig config_for(uint8_t node_id) {
+    DroneCanNodeConfig config;
+    config.node_id = node_id;
+    return config;
+  }
   void on_frame(const CanFrame& frame, int64_t rx_time_us);
   bool send_frames(std::string_view type_name);
   void publish_node_status();

@@ -92,7 +92,7 @@ struct FcStatus {
 // Text of a refusal reason, the words fc_status_t.last_command_reason carries
 // ("" for kReasonNone, "reason code N" for codes not known here).
 std::string_view fc_reason_text(uint8_t reason);
-// The reason code of such a text; kReasonBusy... : returns false when the text is not one.
+// The reason code of such a text; false when the text is none of them.
 bool fc_reason_from_text(std::string_view text, uint8_t& reason);
 
 }  // namespace a3::bridge
