@@ -1,7 +1,8 @@
 // CanBus on a Linux SocketCAN interface (vcan0, can0, ...) through a raw CAN socket.
 // Sends go straight to the socket; when the interface's queue is full (EAGAIN/ENOBUFS) they
-// wait in a bounded queue that the I/O thread drains. The I/O thread also reads frames and
-// hands them to the node's executor (real-time runtime only).
+// wait in a bounded queue that the I/O thread drains. The I/O thread (running from
+// construction to destruction) also reads frames and, once start() names an executor, hands
+// them to it (real-time runtime only); frames that arrive before start() are dropped.
 #pragma once
 
 #include <atomic>

@@ -134,6 +134,24 @@ TEST_F(UserspaceBusTest, MembersHearEachOtherInOrderButNotThemselves) {
   EXPECT_EQ(a.stats().send_refused, 0u);
 }
 
+TEST_F(UserspaceBusTest, ASendOnlyMemberReachesMembersThatJoinLater) {
+  // The sender never calls start(): its I/O thread still accepts the later member.
+  UserspaceCanBus sender("bus2", options_);
+  ExecutorThread thread;
+  UserspaceCanBus listener("bus2", options_);
+  Inbox inbox;
+  listener.start(thread.executor(), inbox.handler());
+  const auto deadline = std::chrono::steady_clock::now() + 5s;
+  while (sender.peer_count() < 1 && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(1ms);
+  }
+  ASSERT_EQ(sender.peer_count(), 1u);
+  for (uint32_t i = 0; i < 5000; ++i) ASSERT_TRUE(sender.send(numbered(i)));
+  const auto got = inbox.wait_for(5000);
+  ASSERT_EQ(got.size(), 5000u);
+  EXPECT_EQ(number_of(got.back()), 4999u);
+}
+
 TEST_F(UserspaceBusTest, FramesCrossProcesses) {
   // The child echoes every frame back with its number + 1 until it sees number 0xFFFFFFFF.
   std::filesystem::create_directories(root_);
