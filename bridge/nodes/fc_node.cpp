@@ -127,7 +127,7 @@ void FcNode::on_command(const FcCommand& c) {
     // A retransmission: keeps the link alive, changes nothing, gets its status again.
     ++counters_.commands_repeated;
     fc_.on_command(FlightCommand{}, now_s());
-    publish_status();
+    executor_->schedule_at(executor_->clock().now_us(), [this] { publish_status(); });
     return;
   }
   const FlightCommandResult result = fc_.on_command(flight_command_from_can(c), now_s());
@@ -142,8 +142,14 @@ void FcNode::on_command(const FcCommand& c) {
     common::log_info("fc", "refused command " + std::to_string(c.command) + " (seq " + std::to_string(c.seq) +
                                "): " + result.reason);
   }
-  if (result.accepted && config_.step_on_command) step();
-  publish_status();
+  // The reply goes out as its own event at this same instant, not from inside the CAN receive
+  // callback: VirtualCanBus starts a second frame on the wire when a frame is queued from a
+  // receive handler (reported), which reorders frames.
+  const bool run_step = result.accepted && config_.step_on_command;
+  executor_->schedule_at(executor_->clock().now_us(), [this, run_step] {
+    if (run_step) step();
+    publish_status();
+  });
 }
 
 void FcNode::step() {

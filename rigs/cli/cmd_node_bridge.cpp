@@ -1,0 +1,134 @@
+// `a3rig node bridge`: the LCM⇄CAN bridge as its own real-time process: the vehicle's sensors
+// (from A3_STATE, with seeded noise) and ESCs (to A3_ACTUATORS) on a DroneCAN bus, and the
+// ground's commands (A3_FC_CMD) and the fc's status (A3_FC_STATUS) between LCM and CAN.
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "bridge/can/can_bus_factory.hpp"
+#include "bridge/nodes/bridge_node.hpp"
+#include "common/runtime.hpp"
+#include "rigs/cli/command_registry.hpp"
+#include "rigs/cli/signal_stop.hpp"
+#include "rigs/fc_setup.hpp"
+
+namespace a3::rigs {
+namespace {
+
+struct BridgeArgs {
+  std::string can = "vcan0";
+  std::string home;
+  uint64_t seed = 1;
+  int node_id = 20;
+  bridge::SensorRates rates;
+  std::string lcm_url;
+  double rtf = 1.0;
+  double duration_s = 0.0;
+  double report_every_s = 5.0;
+};
+
+void report(const bridge::BridgeNode& node, const bridge::CanBus& can, double sim_s) {
+  const auto c = node.counters();
+  const auto cs = can.stats();
+  std::fprintf(stderr,
+               "t=%8.1f s  states %llu (dropped %llu)  sent imu %llu gnss %llu baro %llu mag %llu battery %llu  "
+               "esc %llu (dropped %llu)  commands %llu  statuses %llu  CAN sent %llu received %llu refused %llu\n",
+               sim_s, static_cast<unsigned long long>(c.states), static_cast<unsigned long long>(c.states_rejected),
+               static_cast<unsigned long long>(c.imu), static_cast<unsigned long long>(c.gnss),
+               static_cast<unsigned long long>(c.baro), static_cast<unsigned long long>(c.mag),
+               static_cast<unsigned long long>(c.battery), static_cast<unsigned long long>(c.esc_frames),
+               static_cast<unsigned long long>(c.esc_rejected), static_cast<unsigned long long>(c.commands),
+               static_cast<unsigned long long>(c.statuses), static_cast<unsigned long long>(cs.frames_sent),
+               static_cast<unsigned long long>(cs.frames_received), static_cast<unsigned long long>(cs.send_refused));
+}
+
+int run_bridge(const BridgeArgs& args) {
+  bridge::BridgeNodeConfig config;
+  if (!args.home.empty()) config.home = parse_home(args.home);
+  config.seed = args.seed;
+  config.node_id = static_cast<uint8_t>(args.node_id);
+  config.rates = args.rates;
+  const common::WallClock clock(args.rtf);
+  std::unique_ptr<bridge::CanBus> can = bridge::open_can_bus(args.can);
+  bridge::BridgeNode node(*can, config);
+  common::RealTimeNodeThread thread(node, clock, args.lcm_url);
+  thread.bus().check_loopback();
+  std::fprintf(stderr,
+               "a3rig node bridge: node %d on %s, LCM %s, IMU %.0f Hz (at most one per state), GNSS %.0f Hz, "
+               "baro %.0f Hz, mag %.0f Hz, battery %.0f Hz, seed %llu, real-time factor %g\n",
+               args.node_id, can->name().c_str(), thread.bus().url().c_str(), args.rates.imu_hz, args.rates.gnss_hz,
+               args.rates.baro_hz, args.rates.mag_hz, args.rates.battery_hz,
+               static_cast<unsigned long long>(args.seed), args.rtf);
+  install_stop_signals();
+  thread.start();
+  int64_t last_report_ns = common::WallClock::monotonic_now_ns();
+  while (!stop_requested() && thread.failure().empty()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    const double sim_s = clock.now_s();
+    const int64_t now_ns = common::WallClock::monotonic_now_ns();
+    const bool done = args.duration_s > 0 && sim_s >= args.duration_s;
+    if ((now_ns - last_report_ns) * 1e-9 >= args.report_every_s || done) {
+      report(node, *can, sim_s);
+      last_report_ns = now_ns;
+    }
+    if (done) break;
+  }
+  thread.stop_and_join();
+  node.stop();
+  if (!thread.failure().empty()) {
+    std::cerr << "a3rig node bridge: stopped by an error: " << thread.failure() << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+A3_REGISTER_COMMAND("51-node-bridge", [](CLI::App& app) {
+  auto args = std::make_shared<BridgeArgs>();
+  CLI::App* node = app.get_subcommand("node");
+  CLI::App* cmd = node->add_subcommand(
+      "bridge",
+      "Run the LCM<->CAN bridge in real time: A3_STATE -> DroneCAN sensor messages (IMU, GNSS, baro, "
+      "magnetometer, battery, with seeded noise), esc.RawCommand -> A3_ACTUATORS, A3_FC_CMD -> a3.fc.Command "
+      "(heartbeats only when the ground sends them), a3.fc.Status -> A3_FC_STATUS. Stops on Ctrl-C or after "
+      "--duration-s.");
+  cmd->add_option("--can", args->can,
+                  "CAN bus: an interface name (SocketCAN when it exists, else the userspace bus of that name), "
+                  "socketcan:NAME or userspace:NAME (default vcan0)");
+  cmd->add_option("--home", args->home, "ENU origin LAT,LON,HEIGHT (default 47.397742,8.545594,488); "
+                                        "give the fc the same one");
+  cmd->add_option("--seed", args->seed, "seed of the sensor noise (default 1)");
+  cmd->add_option("--node-id", args->node_id, "DroneCAN node ID (default 20)")->check(CLI::Range(1, 127));
+  cmd->add_option("--imu-rate-hz", args->rates.imu_hz, "IMU report rate; never above the state rate (default 200)")
+      ->check(CLI::Range(1.0, 10000.0));
+  cmd->add_option("--gnss-rate-hz", args->rates.gnss_hz, "GNSS rate (default 10)")->check(CLI::Range(0.1, 1000.0));
+  cmd->add_option("--baro-rate-hz", args->rates.baro_hz, "barometer rate (default 50)")->check(CLI::Range(0.1, 1000.0));
+  cmd->add_option("--mag-rate-hz", args->rates.mag_hz, "magnetometer rate (default 50)")->check(CLI::Range(0.1, 1000.0));
+  cmd->add_option("--battery-rate-hz", args->rates.battery_hz, "battery rate (default 5)")
+      ->check(CLI::Range(0.1, 1000.0));
+  cmd->add_option("--lcm-url", args->lcm_url,
+                  "LCM URL (default: $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0)");
+  cmd->add_option("--rtf", args->rtf, "real-time factor: simulated seconds per wall second (default 1)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--duration-s", args->duration_s, "stop after this much simulated time")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--report-every-s", args->report_every_s, "status line period on stderr, wall seconds (default 5)")
+      ->check(CLI::PositiveNumber);
+  cmd->callback([args] {
+    try {
+      command_exit_status() = run_bridge(*args);
+    } catch (const std::exception& e) {
+      std::cerr << "a3rig node bridge: " << e.what() << "\n";
+      command_exit_status() = 2;
+    }
+  });
+});
+
+}  // namespace a3::rigs

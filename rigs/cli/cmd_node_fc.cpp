@@ -1,0 +1,167 @@
+// `a3rig node fc`: the flight controller as its own real-time process on a CAN bus. It sees the
+// vehicle only through DroneCAN frames (sensors in, esc.RawCommand out, a3.fc.Command in,
+// a3.fc.Status out) and does not use LCM at all, so a real autopilot could take its place.
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "bridge/can/can_bus_factory.hpp"
+#include "bridge/nodes/fc_node.hpp"
+#include "common/json_file.hpp"
+#include "common/runtime.hpp"
+#include "dynamics/scenario_setup.hpp"
+#include "dynamics/vehicle_params.hpp"
+#include "rigs/cli/command_registry.hpp"
+#include "rigs/cli/signal_stop.hpp"
+#include "rigs/fc_setup.hpp"
+
+namespace a3::rigs {
+namespace {
+
+struct FcArgs {
+  std::string can = "vcan0";
+  std::string params;
+  std::string airframe;
+  std::string scenario;
+  std::string home;
+  int node_id = 10;
+  bool no_step_on_command = false;
+  double rtf = 1.0;
+  double duration_s = 0.0;
+  double report_every_s = 5.0;
+};
+
+bridge::FcNodeConfig fc_config_from(const FcArgs& args) {
+  bridge::FcNodeConfig config;
+  dynamics::VehicleParams vehicle =
+      args.airframe.empty() ? dynamics::default_vehicle_params() : dynamics::airframe_by_name_or_path(args.airframe);
+  if (!args.scenario.empty()) {
+    const auto doc = common::load_json_file(args.scenario);
+    const auto& state = dynamics::initial_state_of(doc, args.scenario);
+    const auto& uav = common::require_object(state, "uav", args.scenario);
+    if (uav.contains("payloads")) {
+      vehicle = dynamics::with_payloads(vehicle, dynamics::payloads_from_json(uav["payloads"], args.scenario + "/uav/payloads"));
+    }
+    config.params.fence = geofence_from_initial_state(state, args.scenario);
+  }
+  config.params.vehicle = fc_vehicle_from_airframe(vehicle);
+  if (!args.params.empty()) {
+    config.params = bridge::fc_params_from_json(common::load_json_file(args.params), args.params, config.params);
+  }
+  if (!args.home.empty()) config.home = parse_home(args.home);
+  config.node_id = static_cast<uint8_t>(args.node_id);
+  config.step_on_command = !args.no_step_on_command;
+  return config;
+}
+
+void report(const bridge::FcNode& node, const bridge::CanBus& can, double sim_s) {
+  const auto c = node.counters();
+  const bridge::FlightStatus s = node.status_snapshot();
+  const auto cs = can.stats();
+  std::fprintf(stderr,
+               "t=%8.1f s  %-11s %s failsafe %-11s p=(%.1f, %.1f, %.1f) m  battery %.0f %%  steps %llu  "
+               "sensors imu %llu gnss %llu baro %llu mag %llu (dropped %llu)  commands %llu (refused %llu)  "
+               "CAN sent %llu received %llu refused %llu\n",
+               sim_s, bridge::to_string(s.mode), s.armed ? "armed   " : "disarmed", bridge::to_string(s.failsafe),
+               s.p_W_m.x(), s.p_W_m.y(), s.p_W_m.z(), s.battery_pct, static_cast<unsigned long long>(c.steps),
+               static_cast<unsigned long long>(c.imu), static_cast<unsigned long long>(c.gnss),
+               static_cast<unsigned long long>(c.baro), static_cast<unsigned long long>(c.mag),
+               static_cast<unsigned long long>(c.sensor_rejected),
+               static_cast<unsigned long long>(c.commands - c.heartbeats),
+               static_cast<unsigned long long>(c.commands_refused),
+               static_cast<unsigned long long>(cs.frames_sent), static_cast<unsigned long long>(cs.frames_received),
+               static_cast<unsigned long long>(cs.send_refused));
+}
+
+int run_fc(const FcArgs& args) {
+  const bridge::FcNodeConfig config = fc_config_from(args);
+  const common::WallClock clock(args.rtf);
+  std::unique_ptr<bridge::CanBus> can = bridge::open_can_bus(args.can);
+  bridge::FcNode node(*can, config);
+  // The fc speaks only CAN; the node runtime's bus is an in-process LCM nobody else sees.
+  common::RealTimeNodeThread thread(node, clock, "memq://");
+  std::fprintf(stderr,
+               "a3rig node fc: node %d on %s, control %.0f Hz, status %.0f Hz, vehicle %.2f kg, home %.6f, %.6f, "
+               "%.1f m, real-time factor %g\n",
+               args.node_id, can->name().c_str(), config.params.control_rate_hz, config.params.status_rate_hz,
+               config.params.vehicle.mass_kg, config.home.latitude_deg, config.home.longitude_deg,
+               config.home.height_m, args.rtf);
+  install_stop_signals();
+  thread.start();
+  int64_t last_report_ns = common::WallClock::monotonic_now_ns();
+  while (!stop_requested() && thread.failure().empty()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    const double sim_s = clock.now_s();
+    const int64_t now_ns = common::WallClock::monotonic_now_ns();
+    const bool done = args.duration_s > 0 && sim_s >= args.duration_s;
+    if ((now_ns - last_report_ns) * 1e-9 >= args.report_every_s || done) {
+      report(node, *can, sim_s);
+      last_report_ns = now_ns;
+    }
+    if (done) break;
+  }
+  thread.stop_and_join();
+  node.stop();
+  if (!thread.failure().empty()) {
+    std::cerr << "a3rig node fc: stopped by an error: " << thread.failure() << "\n";
+    return 1;
+  }
+  const auto lateness = thread.executor().lateness_samples_us();
+  if (!lateness.empty()) {
+    std::vector<double> sorted = lateness;
+    std::sort(sorted.begin(), sorted.end());
+    std::fprintf(stderr, "a3rig node fc: timer lateness p50 %.0f us, p99 %.0f us, max %.0f us\n",
+                 sorted[sorted.size() / 2], sorted[sorted.size() * 99 / 100], sorted.back());
+  }
+  return 0;
+}
+
+}  // namespace
+
+A3_REGISTER_COMMAND("52-node-fc", [](CLI::App& app) {
+  auto args = std::make_shared<FcArgs>();
+  CLI::App* node = app.get_subcommand("node");
+  CLI::App* cmd = node->add_subcommand(
+      "fc",
+      "Run the flight controller in real time on a CAN bus (DroneCAN): sensor messages in, "
+      "esc.RawCommand out at the control rate, a3.fc.Command in, a3.fc.Status out, NodeStatus at 1 Hz. "
+      "Pair it with `a3rig node bridge` on the same bus. Stops on Ctrl-C or after --duration-s.");
+  cmd->add_option("--can", args->can,
+                  "CAN bus: an interface name (SocketCAN when it exists, else the userspace bus of that name), "
+                  "socketcan:NAME or userspace:NAME (default vcan0)");
+  cmd->add_option("--params", args->params, "flight-controller parameter JSON (bridge/fc/README.md)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--airframe", args->airframe,
+                  "the vehicle the fc is tuned for: a built-in airframe (iris, the default, or heavy-lift) or an "
+                  "airframe JSON file; --params' vehicle section overrides it");
+  cmd->add_option("--scenario", args->scenario,
+                  "α³-Bench episode or initial_state JSON: payload mass, geofence and altitude bounds")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--home", args->home, "ENU origin LAT,LON,HEIGHT (default 47.397742,8.545594,488); "
+                                        "give the bridge the same one");
+  cmd->add_option("--node-id", args->node_id, "DroneCAN node ID (default 10)")->check(CLI::Range(1, 127));
+  cmd->add_flag("--no-step-on-command", args->no_step_on_command,
+                "do not run a control step at once when a command is accepted (wait for the next tick)");
+  cmd->add_option("--rtf", args->rtf, "real-time factor: simulated seconds per wall second (default 1)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--duration-s", args->duration_s, "stop after this much simulated time")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--report-every-s", args->report_every_s, "status line period on stderr, wall seconds (default 5)")
+      ->check(CLI::PositiveNumber);
+  cmd->callback([args] {
+    try {
+      command_exit_status() = run_fc(*args);
+    } catch (const std::exception& e) {
+      std::cerr << "a3rig node fc: " << e.what() << "\n";
+      command_exit_status() = 2;
+    }
+  });
+});
+
+}  // namespace a3::rigs
