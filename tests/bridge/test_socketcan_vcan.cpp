@@ -89,7 +89,10 @@ class Candump {
       ::dup2(fds[1], STDOUT_FILENO);
       ::close(fds[0]);
       ::close(fds[1]);
-      ::execlp("stdbuf", "stdbuf", "-oL", "candump", "-L", "vcan0", static_cast<char*>(nullptr));
+      // A large receive buffer: candump's default (~300 frames) overflows in bursts when it
+      // runs slowly, as under emulation.
+      ::execlp("stdbuf", "stdbuf", "-oL", "candump", "-r", "8388608", "-L", "vcan0",
+               static_cast<char*>(nullptr));
       ::_exit(127);
     }
     ::close(fds[1]);
@@ -178,8 +181,14 @@ TEST(SocketCanVcan, FramesReachAnotherSocketAndCandump) {
   }
   ASSERT_TRUE(ready) << "candump printed nothing";
 
+  // In bursts of 100, each printed by candump before the next: candump is the slow reader.
   constexpr uint32_t kFrames = 500;
-  for (uint32_t i = 0; i < kFrames; ++i) ASSERT_TRUE(sender_bus->send(test_frame(i)));
+  for (uint32_t i = 0; i < kFrames; ++i) {
+    ASSERT_TRUE(sender_bus->send(test_frame(i)));
+    if (i % 100 == 99) {
+      ASSERT_TRUE(candump.wait_for_line(to_cansend_string(test_frame(i)), 20s)) << "frame " << i;
+    }
+  }
   const auto got = inbox.wait_for(kFrames, 20s);
   std::vector<CanFrame> test_frames;
   for (const auto& f : got) {
