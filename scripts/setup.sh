@@ -39,6 +39,7 @@ packages=(
   json-schema-test-suite                         # the official JSON Schema test cases
   gnuplot-nox                                    # leaderboard plots (PNG)
   python3 python3-jsonschema                     # the Python reference scorer (cross-check, baseline)
+  python3-scipy python3-numpy                    # SciPy baseline of the dynamics benchmark (bench/dynamics)
   iproute2                                       # multicast loopback route for LCM's UDP transport
   # Real SocketCAN for the CAN tests on kernels without it (scripts/vcan-vm): QEMU boots
   # Debian's kernel (fetched with apt-get download, not installed) from a busybox
