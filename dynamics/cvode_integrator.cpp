@@ -1,6 +1,8 @@
 // CVODE integration of the vehicle model.
 #include "dynamics/cvode_integrator.hpp"
 
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -44,14 +46,14 @@ CvodeIntegrator::CvodeIntegrator(const QuadrotorModel& model, WindField& wind, d
   if (y_ == nullptr || abs_tolerance_ == nullptr) throw std::runtime_error("CVODE: out of memory");
   set_absolute_tolerances(abs_tolerance_);
   pack_state(state_, N_VGetArrayPointer(y_));
-  cvode_ = CVodeCreate(CV_BDF, context_);
+  cvode_ = CVodeCreate(CV_ADAMS, context_);
   if (cvode_ == nullptr) throw std::runtime_error("CVODE: CVodeCreate failed");
   check(CVodeInit(cvode_, &CvodeIntegrator::rhs, 0.0, y_), "CVodeInit");
   check(CVodeSVtolerances(cvode_, relative_tolerance_, abs_tolerance_), "CVodeSVtolerances");
   check(CVodeSetUserData(cvode_, this), "CVodeSetUserData");
-  jacobian_ = SUNDenseMatrix(kStateSize, kStateSize, context_);
-  linear_solver_ = SUNLinSol_Dense(y_, jacobian_, context_);
-  check(CVodeSetLinearSolver(cvode_, linear_solver_, jacobian_), "CVodeSetLinearSolver");
+  nonlinear_solver_ = SUNNonlinSol_FixedPoint(y_, 0, context_);
+  if (nonlinear_solver_ == nullptr) throw std::runtime_error("CVODE: SUNNonlinSol_FixedPoint failed");
+  check(CVodeSetNonlinearSolver(cvode_, nonlinear_solver_), "CVodeSetNonlinearSolver");
   check(CVodeSetMaxNumSteps(cvode_, 200000), "CVodeSetMaxNumSteps");
   check(CVodeRootInit(cvode_, 2, &CvodeIntegrator::roots), "CVodeRootInit");
   check(CVodeSetNoInactiveRootWarn(cvode_), "CVodeSetNoInactiveRootWarn");
@@ -59,17 +61,28 @@ CvodeIntegrator::CvodeIntegrator(const QuadrotorModel& model, WindField& wind, d
 
 CvodeIntegrator::~CvodeIntegrator() {
   if (cvode_ != nullptr) CVodeFree(&cvode_);
-  if (linear_solver_ != nullptr) SUNLinSolFree(linear_solver_);
-  if (jacobian_ != nullptr) SUNMatDestroy(jacobian_);
+  if (nonlinear_solver_ != nullptr) SUNNonlinSolFree(nonlinear_solver_);
   if (abs_tolerance_ != nullptr) N_VDestroy(abs_tolerance_);
   if (y_ != nullptr) N_VDestroy(y_);
   if (context_ != nullptr) SUNContext_Free(&context_);
 }
 
-CvodeIntegrator::Stats CvodeIntegrator::stats() const {
+CvodeIntegrator::Stats CvodeIntegrator::since_restart() const {
   Stats s;
   CVodeGetNumSteps(cvode_, &s.steps);
   CVodeGetNumRhsEvals(cvode_, &s.rhs_evaluations);
+  CVodeGetNumErrTestFails(cvode_, &s.error_test_failures);
+  CVodeGetNumNonlinSolvConvFails(cvode_, &s.convergence_failures);
+  return s;
+}
+
+CvodeIntegrator::Stats CvodeIntegrator::stats() const {
+  const Stats now = since_restart();
+  Stats s = before_restart_;
+  s.steps += now.steps;
+  s.rhs_evaluations += now.rhs_evaluations;
+  s.error_test_failures += now.error_test_failures;
+  s.convergence_failures += now.convergence_failures;
   s.restarts = restarts_;
   return s;
 }
@@ -110,6 +123,7 @@ int CvodeIntegrator::roots(sunrealtype, N_Vector y, sunrealtype* g, void* user) 
 }
 
 void CvodeIntegrator::restart() {
+  before_restart_ = stats();
   pack_state(state_, N_VGetArrayPointer(y_));
   check(CVodeReInit(cvode_, time_s_, y_), "CVodeReInit");
   // Touchdown is a descent through z = 0, lift-off a rise of thrust above weight; the battery
@@ -136,6 +150,8 @@ void CvodeIntegrator::integrate(double t_end_s, const RotorSpeeds& command_radps
   }
   while (true) {
     if (need_restart_) restart();
+    // Not past t_end_s: the next command may differ, and work beyond it would be thrown away.
+    check(CVodeSetStopTime(cvode_, t_end_s), "CVodeSetStopTime");
     sunrealtype t = time_s_;
     const int flag = CVode(cvode_, t_end_s, y_, &t, CV_NORMAL);
     check(flag, "CVode");
