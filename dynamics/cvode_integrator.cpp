@@ -150,8 +150,6 @@ void CvodeIntegrator::integrate(double t_end_s, const RotorSpeeds& command_radps
   }
   while (true) {
     if (need_restart_) restart();
-    // Not past t_end_s: the next command may differ, and work beyond it would be thrown away.
-    check(CVodeSetStopTime(cvode_, t_end_s), "CVodeSetStopTime");
     sunrealtype t = time_s_;
     const int flag = CVode(cvode_, t_end_s, y_, &t, CV_NORMAL);
     check(flag, "CVode");

@@ -2,7 +2,7 @@
 // with fixed-point iteration and error control (relative tolerance 1e-8 by default; absolute
 // tolerances per state component, see cvode_integrator.cpp), ground contact and an empty
 // battery found by CVODE's root finding. The solver keeps its history while the inputs stay
-// the same and restarts when they change; it never steps past the requested time.
+// the same and restarts when they change.
 //
 // Adams rather than BDF: the model is not stiff (its fastest mode is the motor lag, 1/τ = 80/s
 // for the Iris, well inside Adams' stability region at the steps the tolerance needs), and

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
@@ -38,6 +39,7 @@ struct Variant {
 
 struct Result {
   double wall_s = 0.0;
+  double cpu_s = 0.0;  // of this process: what the run costs without other load on the machine
   a3lcm::vehicle_state_t last{};
   dynamics::CvodeIntegrator::Stats stats;
   uint64_t states = 0;
@@ -45,6 +47,12 @@ struct Result {
 
 double now_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+double cpu_now_s() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
 dynamics::DynamicsNodeConfig config_for(const Variant& v, double rtol) {
@@ -82,10 +90,11 @@ Result run_node(const Variant& v, double sim_s, double rtol, BusRecorder* keep) 
   } else {
     rt.add(controller);
   }
-  const double t0 = now_s();
+  const double t0 = now_s(), c0 = cpu_now_s();
   rt.run_until(static_cast<int64_t>(sim_s * 1e6));
   Result r;
   r.wall_s = now_s() - t0;
+  r.cpu_s = cpu_now_s() - c0;
   r.last = recorder.last_state();
   r.states = recorder.state_count();
   if (const auto* cv = dynamic_cast<const dynamics::CvodeIntegrator*>(&dyn.integrator())) r.stats = cv->stats();
@@ -102,7 +111,7 @@ Result run_integrator(const Variant& v, double sim_s, double rtol) {
   FlightController controller(config.params, patrol_plan(sim_s));
   const double hover = model.hover_throttle();
   const int steps = static_cast<int>(std::lround(sim_s * 100));
-  const double t0 = now_s();
+  const double t0 = now_s(), c0 = cpu_now_s();
   for (int k = 0; k < steps; ++k) {
     const auto throttle =
         v.hover_script ? std::array<double, 4>{hover, hover, hover, hover}
@@ -113,8 +122,16 @@ Result run_integrator(const Variant& v, double sim_s, double rtol) {
   }
   Result r;
   r.wall_s = now_s() - t0;
+  r.cpu_s = cpu_now_s() - c0;
   if (const auto* cv = dynamic_cast<const dynamics::CvodeIntegrator*>(integrator.get())) r.stats = cv->stats();
   return r;
+}
+
+std::string load_average() {
+  std::ifstream f("/proc/loadavg");
+  std::string a, b, c;
+  f >> a >> b >> c;
+  return a + " " + b + " " + c;
 }
 
 template <typename Fn>
@@ -185,11 +202,13 @@ int main(int argc, char** argv) {
               "climbs), rotor commands and A3_STATE at 100 Hz through the virtual bus; %.0f simulated s per run,\n"
               "median of %d; CVODE rtol %g, ODE step 0.5 ms\n", sim_s, repeats, rtol);
   std::printf("turbulence: mean wind 8 m/s from 240 deg, Dryden; hover: constant command from a script node\n");
-  std::printf("node: controller + dynamics nodes on the virtual runtime; alone: controller and integrator\n"
-              "stepped directly, no bus;\n"
+  std::printf("node: controller + dynamics nodes on the virtual runtime, simulated s per wall s (and per CPU s\n"
+              "of this process: the figure without other load); alone: controller and integrator stepped\n"
+              "directly, no bus; load average %s\n", load_average().c_str());
+  std::printf(
               "CVODE per simulated second: steps, RHS evaluations, error-test failures, nonlinear\n"
               "convergence failures, restarts (CVodeReInit: command changes, contact, renormalisation)\n\n");
-  std::printf("%-27s %11s %11s | %8s %8s %8s %8s %8s | %s\n", "variant", "node xRT", "alone xRT",
+  std::printf("%-27s %10s %10s %10s | %8s %8s %8s %8s %8s | %s\n", "variant", "node xRT", "(CPU)", "alone xRT",
               "steps/s", "RHS/s", "etf/s", "ncf/s", "restart/s", "final position (m)");
   const Variant* first = nullptr;
   for (const Variant& v : variants) {
@@ -203,7 +222,8 @@ int main(int argc, char** argv) {
                    static_cast<unsigned long long>(node.states), static_cast<unsigned long long>(expected_states));
       return 1;
     }
-    std::printf("%-27s %10.0fx %10.0fx |", v.name.c_str(), sim_s / node.wall_s, sim_s / alone.wall_s);
+    std::printf("%-27s %9.0fx %9.0fx %9.0fx |", v.name.c_str(), sim_s / node.wall_s, sim_s / node.cpu_s,
+                sim_s / alone.wall_s);
     if (v.kind == dynamics::IntegratorKind::kCvode) {
       const auto& s = node.stats;
       std::printf(" %8.0f %8.0f %8.1f %8.1f %9.1f |", s.steps / sim_s, s.rhs_evaluations / sim_s,
