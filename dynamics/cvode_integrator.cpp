@@ -124,6 +124,12 @@ int CvodeIntegrator::roots(sunrealtype, N_Vector y, sunrealtype* g, void* user) 
 
 void CvodeIntegrator::restart() {
   before_restart_ = stats();
+  // Root finding only sees sign changes after the initial point: a vehicle on the ground that
+  // already has more thrust than weight lifts off now (or it would stay down for good).
+  if (on_ground_ && !crashed_ && model_.total_thrust_N(state_.rotor_speed_radps) > model_.weight_N()) {
+    liftoff(time_s_, state_.p_W_m);
+    state_.p_W_m.z() = 1e-6;
+  }
   pack_state(state_, N_VGetArrayPointer(y_));
   check(CVodeReInit(cvode_, time_s_, y_), "CVodeReInit");
   // Touchdown is a descent through z = 0, lift-off a rise of thrust above weight; the battery
@@ -156,6 +162,14 @@ void CvodeIntegrator::integrate(double t_end_s, const RotorSpeeds& command_radps
     state_ = unpack_state(N_VGetArrayPointer(y_));
     if (flag != CV_ROOT_RETURN) {
       time_s_ = t_end_s;
+      // Root finding misses a descent that starts exactly at z = 0 (the root is inactive at
+      // the initial point): never let the vehicle pass through the floor.
+      if (!on_ground_ && state_.p_W_m.z() < 0.0) {
+        touchdown(t_end_s, state_.p_W_m, state_.v_W_mps.z());
+        settle_on_ground();
+        if (crashed_) command_ = RotorSpeeds{};
+        need_restart_ = true;
+      }
       break;
     }
     time_s_ = t;
@@ -174,7 +188,10 @@ void CvodeIntegrator::integrate(double t_end_s, const RotorSpeeds& command_radps
         if (crashed_) {
           command_ = RotorSpeeds{};
         } else if (model_.total_thrust_N(state_.rotor_speed_radps) > model_.weight_N()) {
-          on_ground_ = false;  // touched down while climbing away: stays airborne at z = 0
+          // Touched down with more thrust than weight: it stays airborne, just above the floor
+          // so that the next descent is a sign change the root finding sees.
+          on_ground_ = false;
+          state_.p_W_m.z() = 1e-6;
         }
       }
     }

@@ -89,7 +89,7 @@ LinkEmulatorConfig parse_link_emulator_config(const json& object, const std::str
                   "min_dwell_s", "degraded_share", "handover_delay_ms", "net_rate_hz",
                   "reordering", "gilbert_elliott", "edge_max_load", "max_message_bytes",
                   "max_pending_messages", "max_pending_bytes", "max_backlog_s",
-                  "publish_records", "trace"},
+                  "publish_records", "trace", "degradations"},
                  where);
   LinkEmulatorConfig c;
   const auto has = [&](const char* key) { return object.contains(key); };
@@ -128,6 +128,17 @@ LinkEmulatorConfig parse_link_emulator_config(const json& object, const std::str
         common::number_or(ge, "loss_in_bad", c.link.gilbert_elliott.loss_in_bad, ge_where);
   }
   if (has("edge_max_load")) c.edge.max_load = number("edge_max_load");
+  if (has("degradations")) {
+    const json& windows = common::require_array(object, "degradations", where);
+    for (std::size_t i = 0; i < windows.size(); ++i) {
+      const std::string w = where + "/degradations/" + std::to_string(i);
+      const double start_s = common::require_number(windows[i], "start_s", w);
+      const double duration_s = common::require_number(windows[i], "duration_s", w);
+      if (start_s < 0.0 || !(duration_s > 0.0)) throw InputError(w + ": start_s >= 0 and duration_s > 0");
+      c.forced_degradations.push_back(
+          {std::llround(start_s * 1e6), std::llround((start_s + duration_s) * 1e6)});
+    }
+  }
   if (has("max_message_bytes")) c.max_message_bytes = require_count(object, "max_message_bytes", where);
   if (has("max_pending_messages")) {
     c.max_pending_messages = require_count(object, "max_pending_messages", where);

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "common/channels.hpp"
 #include "linkemu/edge_compute.hpp"
@@ -57,6 +58,14 @@ struct LinkEmulatorConfig {
   int64_t max_pending_bytes = int64_t{512} << 20;  // payload bytes held, per direction
   double max_backlog_s = 60.0;                     // transmitter backlog, per direction
   bool publish_records = true;                     // link_record_t on channels.record
+
+  // Scripted outages: windows [start_us, end_us) of the run (from its start) in which every
+  // slice is in its degraded regime. Ignored when a trace is replayed.
+  struct Window {
+    int64_t start_us = 0;
+    int64_t end_us = 0;
+  };
+  std::vector<Window> forced_degradations;
 
   std::optional<NetworkTrace> trace;  // replay instead of the seeded process
   bool trace_loop = false;

@@ -62,7 +62,9 @@ void LinkEmulatorNode::start(common::Executor& executor, common::Bus& bus) {
   if (config_.trace) {
     source_ = std::make_unique<TraceReplay>(*config_.trace, now_us, config_.trace_loop);
   } else {
-    source_ = std::make_unique<SyntheticNetwork>(profiles_, streams, config_.start_regime, now_us);
+    DegradationWindows forced;
+    for (const auto& w : config_.forced_degradations) forced.emplace_back(now_us + w.start_us, now_us + w.end_us);
+    source_ = std::make_unique<SyntheticNetwork>(profiles_, streams, config_.start_regime, now_us, forced);
   }
 
   for (Direction* d : {&up_, &down_}) {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace a3::linkemu {
@@ -25,7 +26,7 @@ std::string slice_stream_name(Slice slice, const char* term) {
 
 SliceStateProcess::SliceStateProcess(const SliceProfile& profile, const ProcessTiming& timing,
                                      const common::RngStreams& streams, StartRegime start,
-                                     int64_t start_us)
+                                     int64_t start_us, DegradationWindows forced)
     : profile_(profile),
       redraw_mean_s_(timing.redraw_mean_s),
       regime_(streams.stream(slice_stream_name(profile.slice, "regime")),
@@ -35,19 +36,41 @@ SliceStateProcess::SliceStateProcess(const SliceProfile& profile, const ProcessT
       jitter_rng_(streams.stream(slice_stream_name(profile.slice, "jitter_ms"))),
       loss_rng_(streams.stream(slice_stream_name(profile.slice, "loss_pct"))),
       throughput_rng_(streams.stream(slice_stream_name(profile.slice, "throughput_mbps"))),
-      edge_rng_(streams.stream(slice_stream_name(profile.slice, "edge_load"))) {
+      edge_rng_(streams.stream(slice_stream_name(profile.slice, "edge_load"))),
+      forced_(std::move(forced)) {
+  std::sort(forced_.begin(), forced_.end());
   state_.slice = profile.slice;
-  redraw();
+  redraw(start_us);
   next_redraw_us_ = start_us + draw_redraw_interval_us();
-  segment_end_us_ = std::min(next_redraw_us_, regime_.episode_end_us());
+  segment_end_us_ = segment_end_after(start_us);
+}
+
+bool SliceStateProcess::forced_at(int64_t t_us) const {
+  for (const auto& [start, end] : forced_) {
+    if (t_us >= start && t_us < end) return true;
+  }
+  return false;
+}
+
+int64_t SliceStateProcess::next_forced_boundary_after(int64_t t_us) const {
+  int64_t next = std::numeric_limits<int64_t>::max();
+  for (const auto& [start, end] : forced_) {
+    if (start > t_us) next = std::min(next, start);
+    if (end > t_us) next = std::min(next, end);
+  }
+  return next;
+}
+
+int64_t SliceStateProcess::segment_end_after(int64_t t_us) const {
+  return std::min({next_redraw_us_, regime_.episode_end_us(), next_forced_boundary_after(t_us)});
 }
 
 int64_t SliceStateProcess::draw_redraw_interval_us() {
   return std::max<int64_t>(1, std::llround(redraw_rng_.exponential(redraw_mean_s_) * 1e6));
 }
 
-void SliceStateProcess::redraw() {
-  const bool degraded = regime_.degraded();
+void SliceStateProcess::redraw(int64_t t_us) {
+  const bool degraded = regime_.degraded() || forced_at(t_us);
   const SliceProfile& p = profile_;
   state_.degraded = degraded;
   state_.lat_ms = p.lat_ms.sample_ms(lat_rng_, degraded);
@@ -69,9 +92,9 @@ const NetworkState& SliceStateProcess::state_at(int64_t t_us) {
   while (t_us >= segment_end_us_) {
     const int64_t change_us = segment_end_us_;
     if (change_us >= regime_.episode_end_us()) regime_.advance_to(change_us);
-    redraw();
-    next_redraw_us_ = change_us + draw_redraw_interval_us();
-    segment_end_us_ = std::min(next_redraw_us_, regime_.episode_end_us());
+    redraw(change_us);
+    if (change_us >= next_redraw_us_) next_redraw_us_ = change_us + draw_redraw_interval_us();
+    segment_end_us_ = segment_end_after(change_us);
   }
   return state_;
 }

@@ -5,11 +5,11 @@ namespace a3::linkemu {
 
 SyntheticNetwork::SyntheticNetwork(const SliceProfiles& profiles,
                                    const common::RngStreams& streams, StartRegime start,
-                                   int64_t start_us)
-    : seed_(streams.master_seed()) {
+                                   int64_t start_us, DegradationWindows forced)
+    : seed_(streams.master_seed()), forced_windows_(forced.size()) {
   for (Slice slice : kAllSlices) {
     processes_[index_of(slice)] = std::make_unique<SliceStateProcess>(
-        profiles.at(slice), profiles.timing, streams, start, start_us);
+        profiles.at(slice), profiles.timing, streams, start, start_us, forced);
   }
 }
 
@@ -22,7 +22,8 @@ int64_t SyntheticNetwork::next_change_us(Slice slice) const {
 }
 
 std::string SyntheticNetwork::describe() const {
-  return "seeded slice-profile process (seed " + std::to_string(seed_) + ")";
+  return "seeded slice-profile process (seed " + std::to_string(seed_) + ")" +
+         (forced_windows_ > 0 ? ", " + std::to_string(forced_windows_) + " scripted degradation window(s)" : "");
 }
 
 }  // namespace a3::linkemu

@@ -14,8 +14,9 @@ namespace a3::linkemu {
 
 class SyntheticNetwork final : public NetworkStateSource {
  public:
+  // forced: windows of forced degradation on every slice (times from the run's start).
   SyntheticNetwork(const SliceProfiles& profiles, const common::RngStreams& streams,
-                   StartRegime start, int64_t start_us);
+                   StartRegime start, int64_t start_us, DegradationWindows forced = {});
 
   NetworkState state_at(Slice slice, int64_t t_us) override;
   int64_t next_change_us(Slice slice) const override;
@@ -25,6 +26,7 @@ class SyntheticNetwork final : public NetworkStateSource {
  private:
   std::array<std::unique_ptr<SliceStateProcess>, 3> processes_;
   uint64_t seed_;
+  std::size_t forced_windows_ = 0;
 };
 
 }  // namespace a3::linkemu

@@ -39,7 +39,7 @@ struct ConversationConfig {
   double observation_timeout_s = 15.0;
   double image_timeout_s = 120.0;
   double user_min_wait_s = 3.0;
-  double user_max_wait_s = 120.0;
+  double user_max_wait_s = 300.0;
   double settle_speed_mps = 0.3;
   double settle_time_s = 3.0;
   double heartbeat_period_s = 1.0;

@@ -34,6 +34,20 @@ Eigen::Vector2d objective_anchor(const Objective& o) {
 
 }  // namespace
 
+bool ScriptedAgent::still_flying_a_route(const AgentContext& c) const {
+  // The newest telemetry in the dialogue: moving on a route or toward a target.
+  for (auto t = c.dialogue->rbegin(); t != c.dialogue->rend(); ++t) {
+    for (const auto& o : t->obs) {
+      if (o.is_object() && o.value("tool", "") == "read_telemetry" && o.contains("result") && o["result"].is_object()) {
+        const auto& r = o["result"];
+        const std::string mode = r.value("mode", "");
+        return (mode == "goto" || mode == "takeoff") && r.contains("route") && r["route"].is_object();
+      }
+    }
+  }
+  return false;
+}
+
 bool is_hard_network(const nlohmann::json& net) {
   return number(net, "lat_ms", 0) > 40 || number(net, "loss_pct", 0) >= 1 || number(net, "throughput_mbps", 1e9) < 5 ||
          number(net, "edge_load", 0) > 0.8;
@@ -139,7 +153,10 @@ AgentDecision ScriptedAgent::decide(const AgentContext& c) {
   AgentDecision d;
   const int agent_turns_left = (c.max_turns - c.turn_number) / 2 + 1;
   Step step;
-  if (steps_.empty()) {
+  if (still_flying_a_route(c) && agent_turns_left > static_cast<int>(steps_.size())) {
+    // The last leg is still being flown: check on it rather than start the next one.
+    step = {"monitor_progress", "The current leg is still in progress; monitoring.", {mcp("read_telemetry")}};
+  } else if (steps_.empty()) {
     step = {"status_report", "Reporting status.", {mcp("read_telemetry")}};
   } else if (static_cast<int>(steps_.size()) > agent_turns_left && steps_.size() >= 3) {
     // Running out of turns: fold the next two steps into one.

@@ -30,6 +30,7 @@ class ScriptedAgent final : public Agent {
   };
   void plan(const AgentContext& context);
   std::vector<nlohmann::json> route_from_path_plan(const AgentContext& context) const;
+  bool still_flying_a_route(const AgentContext& context) const;
 
   bool planned_ = false;
   std::deque<Step> steps_;

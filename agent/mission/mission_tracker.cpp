@@ -7,6 +7,8 @@
 namespace a3::agent {
 namespace {
 
+constexpr double kSurveyEdgeMargin_m = 10.0;
+
 Eigen::Vector2d xy(const double p[3]) { return {p[0], p[1]}; }
 
 bool sensor_matches(const std::string& wanted, const std::string& got) {
@@ -95,7 +97,8 @@ void MissionTracker::on_payload(const a3lcm::payload_event_t& e) {
     if (pr.done || !sensor_matches(o.sensor, e.sensor)) continue;
     switch (o.type) {
       case ObjectiveType::kSurvey:
-        if (common::polygon_contains(o.area, p)) {
+        // A lawnmower's line ends lie on the area's edge: captures within 10 m of it count.
+        if (common::polygon_contains(o.area, p) || common::polygon_edge_distance(o.area, p) <= kSurveyEdgeMargin_m) {
           ++pr.count;
           ++version_;
           if (pr.count >= o.images_required) {

@@ -255,13 +255,13 @@ Scenario scenario_from_json(const nlohmann::json& j, const std::string& where, c
 
 std::vector<std::string> builtin_scenario_names() {
   std::vector<std::string> names;
-  for (const auto& [name, text] : builtin_scenarios()) names.push_back(name);
+  for (const auto& [name, text] : builtin_scenarios()) names.emplace_back(name);
   return names;
 }
 
 Scenario load_scenario(const std::string& spec, const std::filesystem::path& shared_dir) {
   for (const auto& [name, text] : builtin_scenarios()) {
-    if (name == spec) return scenario_from_json(nlohmann::json::parse(text), "scenario " + name, ".");
+    if (name == spec) return scenario_from_json(nlohmann::json::parse(text), "scenario " + std::string(name), ".");
   }
   if (spec.rfind("alphabench:", 0) == 0) {
     std::filesystem::path p = spec.substr(11);

@@ -171,6 +171,38 @@ TEST_P(Integrators, RestsOnTheGroundTakesOffAndLandsWithoutSinking) {
   EXPECT_EQ(crashes, 0);
 }
 
+// Touching down while the rotors still give more thrust than weight leaves the vehicle just
+// above the floor; when the thrust then drops it must settle on the ground, not sink into it.
+TEST_P(Integrators, ATouchdownUnderThrustNeverSinksThroughTheFloor) {
+  const double hover = model_.hover_speed_radps();
+  VehicleState start;
+  start.p_W_m = {0, 0, 0.05};
+  start.v_W_mps = {0, 0, -0.5};
+  const double up = hover * std::sqrt(1.02), down = hover * std::sqrt(0.9);
+  start.rotor_speed_radps = {up, up, up, up};
+  const Flight run = fly(GetParam(), model_, start, 4.0, [&](double t, const VehicleState&) {
+    const double w = t < 0.5 ? up : down;
+    return RotorSpeeds{w, w, w, w};
+  });
+  double lowest = 0.0;
+  for (const auto& s : run.states) lowest = std::min(lowest, s.p_W_m.z());
+  EXPECT_GT(lowest, -0.005);
+  EXPECT_NEAR(run.states.back().p_W_m.z(), 0.0, 0.005);
+  EXPECT_NEAR(run.states.back().v_W_mps.z(), 0.0, 0.05);
+}
+
+// Thrust that rises above weight while the rotors spin up, dips back below it and rises
+// again: the vehicle lifts off each time the thrust exceeds the weight, whatever the history.
+TEST_P(Integrators, LiftsOffWheneverThrustExceedsWeight) {
+  const double hover = model_.hover_speed_radps();
+  VehicleState start;
+  const Flight run = fly(GetParam(), model_, start, 6.0, [&](double t, const VehicleState&) {
+    const double scale = t < 1.0 ? 1.001 : t < 1.01 ? 0.98 : 1.1;
+    return RotorSpeeds{hover * scale, hover * scale, hover * scale, hover * scale};
+  });
+  EXPECT_GT(run.states.back().p_W_m.z(), 2.0);
+}
+
 TEST_P(Integrators, AHardImpactIsACrashAndStopsTheMotors) {
   VehicleState start;
   start.p_W_m = {0, 0, 10};  // free fall from 10 m: 14 m/s at impact

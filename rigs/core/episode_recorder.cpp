@@ -1,0 +1,87 @@
+// Recording an episode from the bus.
+#include "rigs/core/episode_recorder.hpp"
+
+#include <cmath>
+
+#include "a3lcm/payload_event_t.hpp"
+#include "common/channels.hpp"
+
+namespace a3::rigs {
+
+EpisodeRecorderNode::EpisodeRecorderNode(agent::Mission mission) : tracker_(std::move(mission)) {}
+
+RecordedEpisode EpisodeRecorderNode::snapshot() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  RecordedEpisode r = rec_;
+  r.objectives = tracker_.to_json();
+  r.objectives_all_done = tracker_.all_done();
+  return r;
+}
+
+void EpisodeRecorderNode::start(common::Executor&, common::Bus& bus) {
+  namespace ch = common::channels;
+  bus.subscribe<a3lcm::episode_event_t>(ch::kEpisode, [this](const a3lcm::episode_event_t& e, int64_t) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (e.kind == "turn_end") {
+      auto j = nlohmann::json::parse(e.detail_json, nullptr, false);
+      if (!j.is_discarded()) rec_.turns.push_back(std::move(j));
+    } else if (e.kind == "dialogue_end") {
+      rec_.dialogue_ended = true;
+      auto j = nlohmann::json::parse(e.detail_json, nullptr, false);
+      rec_.dialogue_end_reason = j.is_object() ? j.value("reason", "") : "";
+    }
+  });
+  bus.subscribe<a3lcm::safety_event_t>(ch::kSafety, [this](const a3lcm::safety_event_t& e, int64_t) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    rec_.safety.push_back(e);
+  });
+  bus.subscribe<a3lcm::link_record_t>(ch::kLinkRecord, [this](const a3lcm::link_record_t& r, int64_t) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    LinkDirectionStats& d = r.direction == "up" ? rec_.up : rec_.down;
+    ++d.messages;
+    d.bytes += static_cast<uint64_t>(std::max<int64_t>(r.size_bytes, 0));
+    if (r.outcome == a3lcm::link_record_t::DELIVERED) {
+      ++d.delivered;
+      const double delay_ms = (r.delivery_utime_us - r.utime_us) * 1e-3;
+      d.delay_sum_ms += delay_ms;
+      d.delay_max_ms = std::max(d.delay_max_ms, delay_ms);
+    } else if (r.outcome == a3lcm::link_record_t::LOST) {
+      ++d.lost;
+    } else {
+      ++d.dropped;
+    }
+    rec_.last_slice = r.slice;
+  });
+  bus.subscribe<a3lcm::vehicle_state_t>(ch::kState, [this](const a3lcm::vehicle_state_t& s, int64_t) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    tracker_.on_state(s);
+    const double t = s.utime_us * 1e-6;
+    const double speed = std::sqrt(s.v_W_mps[0] * s.v_W_mps[0] + s.v_W_mps[1] * s.v_W_mps[1] + s.v_W_mps[2] * s.v_W_mps[2]);
+    if (rec_.have_state) {
+      rec_.distance_m += std::sqrt(std::pow(s.p_W_m[0] - rec_.last_state.p_W_m[0], 2) +
+                                   std::pow(s.p_W_m[1] - rec_.last_state.p_W_m[1], 2) +
+                                   std::pow(s.p_W_m[2] - rec_.last_state.p_W_m[2], 2));
+    }
+    rec_.max_altitude_m = std::max(rec_.max_altitude_m, s.p_W_m[2]);
+    rec_.max_speed_mps = std::max(rec_.max_speed_mps, speed);
+    if (!s.on_ground) rec_.has_flown = true;
+    if (t >= next_sample_s_) {
+      rec_.trajectory.push_back({t, s.p_W_m[0], s.p_W_m[1], s.p_W_m[2], s.battery_pct, speed});
+      next_sample_s_ = std::floor(t) + 1.0;
+    }
+    rec_.last_state = s;
+    rec_.have_state = true;
+    ++rec_.states;
+  });
+  bus.subscribe<a3lcm::fc_status_t>(ch::kFcStatus, [this](const a3lcm::fc_status_t& s, int64_t) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    tracker_.on_fc_status(s);
+    rec_.last_fc = s;
+  });
+  bus.subscribe<a3lcm::payload_event_t>(ch::kPayload, [this](const a3lcm::payload_event_t& e, int64_t) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    tracker_.on_payload(e);
+  });
+}
+
+}  // namespace a3::rigs

@@ -1,0 +1,63 @@
+// The episode recorder: listens to everything an episode is made of — completed turns and the
+// end of the dialogue (A3_EPISODE), measured safety events (A3_SAFETY), one record per link
+// message (A3_LINK_RECORD), the true trajectory (A3_STATE), the flight controller (A3_FC_STATUS)
+// and payload events (A3_PAYLOAD) — and keeps what the episode file needs: the turns, the
+// events, link statistics, a 1 Hz trajectory and the last state. It also tracks the mission's
+// objectives (success is what really happened). Snapshots are safe from any thread.
+#pragma once
+
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "a3lcm/episode_event_t.hpp"
+#include "a3lcm/fc_status_t.hpp"
+#include "a3lcm/link_record_t.hpp"
+#include "a3lcm/safety_event_t.hpp"
+#include "a3lcm/vehicle_state_t.hpp"
+#include "agent/mission/mission_tracker.hpp"
+#include "common/node.hpp"
+
+namespace a3::rigs {
+
+struct LinkDirectionStats {
+  uint64_t messages = 0, delivered = 0, lost = 0, dropped = 0;
+  uint64_t bytes = 0;
+  double delay_sum_ms = 0.0, delay_max_ms = 0.0;
+};
+
+struct RecordedEpisode {
+  std::vector<nlohmann::json> turns;      // turn_end details (with their _rig part)
+  bool dialogue_ended = false;
+  std::string dialogue_end_reason;
+  std::vector<a3lcm::safety_event_t> safety;
+  LinkDirectionStats up, down;
+  std::vector<std::array<double, 6>> trajectory;  // t_s, x, y, z, battery %, speed m/s at 1 Hz
+  a3lcm::vehicle_state_t last_state{};
+  a3lcm::fc_status_t last_fc{};
+  bool have_state = false;
+  bool has_flown = false;
+  double distance_m = 0.0;
+  double max_altitude_m = 0.0;
+  double max_speed_mps = 0.0;
+  std::string last_slice;
+  nlohmann::json objectives;              // MissionTracker::to_json()
+  bool objectives_all_done = false;
+  uint64_t states = 0;
+};
+
+class EpisodeRecorderNode final : public common::Node {
+ public:
+  explicit EpisodeRecorderNode(agent::Mission mission);
+  std::string name() const override { return "recorder"; }
+  void start(common::Executor& executor, common::Bus& bus) override;
+  RecordedEpisode snapshot() const;
+
+ private:
+  mutable std::mutex mutex_;
+  RecordedEpisode rec_;
+  agent::MissionTracker tracker_;
+  double next_sample_s_ = 0.0;
+};
+
+}  // namespace a3::rigs

@@ -1,0 +1,111 @@
+// Scenario → node configurations.
+#include "rigs/core/node_configs.hpp"
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+
+#include "agent/conversation/replay_agent.hpp"
+#include "agent/conversation/scripted_agent.hpp"
+#include "agent/conversation/think_time.hpp"
+#include "common/json_file.hpp"
+#include "dynamics/scenario_setup.hpp"
+#include "linkemu/network_trace.hpp"
+#include "rigs/fc_setup.hpp"
+
+namespace a3::rigs {
+namespace {
+
+linkemu::NetworkTrace trace_for(const NetworkScript& n, const std::filesystem::path& shared_dir) {
+  std::filesystem::path p = n.trace;
+  if (n.trace.rfind("alphabench:", 0) == 0) {
+    p = n.trace.substr(11);
+    if (p.is_relative()) p = shared_dir / "alphabench" / "eval_runs" / p;
+  }
+  return linkemu::load_network_trace(p, n.trace_period_s);
+}
+
+}  // namespace
+
+RigConfigs make_rig_configs(const Scenario& s, const RunOptions& o) {
+  RigConfigs c;
+  const std::string where = s.source;
+
+  // Dynamics: the airframe with the scenario's payloads, wind, on the ground below the pose.
+  c.dynamics.params = dynamics::airframe_by_name_or_path(s.airframe);
+  dynamics::apply_initial_state(s.initial_state, where + "/initial_state", true, c.dynamics);
+  c.dynamics.turbulence.reference_altitude_m = std::max(10.0, s.mission.cruise_altitude_m);
+  c.dynamics.integrator = dynamics::parse_integrator_kind(o.integrator);
+  c.dynamics.publish_rate_hz = o.dynamics_rate_hz;
+  c.dynamics.seed = o.seed;
+  const dynamics::QuadrotorModel model(c.dynamics.params);
+  if (model.hover_throttle() > 0.85) {
+    throw common::InputError(where + ": airframe '" + s.airframe + "' cannot carry " +
+                             std::to_string(c.dynamics.params.payload_mass_kg) +
+                             " kg of payload with a control margin (hover throttle " +
+                             std::to_string(model.hover_throttle()) + "); use \"airframe\": \"heavy-lift\"");
+  }
+
+  // Bridge and flight controller.
+  c.bridge.seed = o.seed;
+  c.fc.params.vehicle = fc_vehicle_from_airframe(c.dynamics.params);
+  c.fc.params.fence = geofence_from_initial_state(s.initial_state, where + "/initial_state");
+
+  // Link emulator.
+  c.link.seed = o.seed;
+  c.link.initial_slice = linkemu::parse_slice(s.network.initial_slice);
+  if (!s.network.trace.empty()) c.link.trace = trace_for(s.network, o.shared_dir);
+  for (const auto& w : s.network.degradations) {
+    c.link.forced_degradations.push_back({static_cast<int64_t>(w.start_s * 1e6),
+                                          static_cast<int64_t>((w.start_s + w.duration_s) * 1e6)});
+  }
+
+  // Vehicle side.
+  agent::ToolServerConfig& t = c.tool_server;
+  t.airspace = s.airspace;
+  t.home_W_m = s.mission.home_W_m;
+  t.env = s.initial_state.value("env", nlohmann::json::object());
+  const auto& uav = s.initial_state["uav"];
+  t.sensors = uav.value("sensors", nlohmann::json::object());
+  t.payloads = uav.value("payloads", nlohmann::json::array());
+  dynamics::RotorSpeeds hover;
+  hover.fill(model.hover_speed_radps());
+  t.energy.hover_power_w = model.electrical_power_W(hover);
+  t.energy.battery_capacity_wh = model.battery_energy_J() / 3600.0;
+  t.energy.cruise_speed_mps = s.mission.cruise_speed_mps;
+  t.gate.return_altitude_m = c.fc.params.failsafe.return_altitude_m;
+  t.gate.geofence_margin_m = std::max(t.gate.geofence_margin_m, c.fc.params.failsafe.fence_margin_m);
+  t.gate.max_speed_mps = c.fc.params.limits.max_horizontal_speed_mps;
+  c.monitor.airspace = s.airspace;
+
+  // Ground side.
+  agent::ConversationConfig& v = c.conversation;
+  v.mission = s.mission;
+  v.initial_state = s.initial_state;
+  v.airspace_brief = s.airspace_brief();
+  v.min_turns = o.min_turns;
+  v.max_turns = o.max_turns;
+  return c;
+}
+
+std::unique_ptr<agent::Agent> make_agent(const RunOptions& o) {
+  std::unique_ptr<agent::Agent> inner;
+  if (o.agent == "scripted") {
+    inner = std::make_unique<agent::ScriptedAgent>();
+  } else if (o.agent.rfind("replay:", 0) == 0) {
+    std::filesystem::path p = o.agent.substr(7);
+    if (o.agent.rfind("replay:alphabench:", 0) == 0) {
+      p = o.agent.substr(18);
+      if (p.is_relative()) p = o.shared_dir / "alphabench" / "eval_runs" / p;
+    }
+    inner = std::make_unique<agent::ReplayAgent>(agent::ReplayAgent::from_file(p));
+  } else {
+    throw std::invalid_argument("unknown agent '" + o.agent +
+                                "' (scripted, replay:<episode.json>, replay:alphabench:<path>)");
+  }
+  const agent::ThinkTime think = agent::ThinkTime::parse(o.think_time);
+  if (think.is_zero()) return inner;
+  return std::make_unique<agent::ThinkTimeAgent>(std::move(inner), think, o.seed);
+}
+
+}  // namespace a3::rigs

@@ -1,0 +1,263 @@
+// Running an episode on either runtime.
+#include "rigs/core/rig_runner.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <thread>
+
+#include "agent/vehicle/airspace_monitor_node.hpp"
+#include "agent/vehicle/tool_server_node.hpp"
+#include "bridge/can/can_bus_factory.hpp"
+#include "bridge/can/virtual_can_bus.hpp"
+#include "common/runtime.hpp"
+#include "linkemu/link_emulator_node.hpp"
+#include "rigs/core/episode_recorder.hpp"
+#include "rigs/core/episode_writer.hpp"
+#include "rigs/core/lcm_log_node.hpp"
+#include "rigs/core/node_configs.hpp"
+
+namespace a3::rigs {
+namespace {
+
+using SteadyClock = std::chrono::steady_clock;
+
+constexpr double kPostDialogueWait_s = 240.0;  // after the last turn, time left to land
+constexpr double kAfterCrash_s = 2.0;
+
+// Why the episode should end now, or "".
+std::string end_reason(const RecordedEpisode& r, bool dialogue_done, double mission_s, double dialogue_end_s,
+                       double crash_s, double time_limit_s) {
+  if (crash_s >= 0.0 && mission_s - crash_s >= kAfterCrash_s) return "crashed";
+  if (dialogue_done) {
+    const bool landed = r.last_state.on_ground && !r.last_fc.armed;
+    if (landed) return "completed";
+    if (dialogue_end_s >= 0.0 && mission_s - dialogue_end_s >= kPostDialogueWait_s) return "dialogue_ended_airborne";
+  }
+  if (mission_s >= time_limit_s) return "time_limit";
+  return "";
+}
+
+std::string describe_turn(const nlohmann::json& t, const RecordedEpisode& r) {
+  std::string names;
+  for (const auto& a : t.value("actions", nlohmann::json::array())) {
+    names += (names.empty() ? "" : ", ") + (a.value("type", "") == "a2a" ? "a2a:" + a.value("task", "") : a.value("name", ""));
+  }
+  std::string outcomes;
+  for (const auto& o : t.value("obs", nlohmann::json::array())) {
+    std::string status = o.is_object() ? o.value("status", "") : "";
+    if (status.empty() && o.is_object() && o.contains("result") && o["result"].is_object()) status = o["result"].value("status", "ok");
+    outcomes += (outcomes.empty() ? "" : ",") + (status.empty() ? std::string("ok") : status);
+  }
+  char text[600];
+  const auto& rig = t.value("_rig", nlohmann::json::object());
+  std::snprintf(text, sizeof text, "turn %2d %-5s %-24s [%s] -> [%s]  t=%.1f s  z=%.1f m  battery %.0f %%  %s",
+                t.value("turn", 0), t.value("speaker", "").c_str(), t.value("intent", "").c_str(), names.c_str(),
+                outcomes.c_str(), rig.value("finished_s", 0.0), r.last_state.p_W_m[2], r.last_state.battery_pct,
+                t.value("net", nlohmann::json::object()).value("slice", "").c_str());
+  return text;
+}
+
+// Progress lines for what is new since the last call.
+struct Reporter {
+  const ProgressFn& progress;
+  std::size_t turns = 0, safety = 0;
+  void operator()(const RecordedEpisode& r) {
+    if (!progress) return;
+    for (; turns < r.turns.size(); ++turns) progress(describe_turn(r.turns[turns], r));
+    for (; safety < r.safety.size(); ++safety) {
+      const auto& e = r.safety[safety];
+      char text[300];
+      std::snprintf(text, sizeof text, "safety: %s (%s) at t=%.1f s, value %.2f: %s", e.kind.c_str(), e.source.c_str(),
+                    e.utime_us * 1e-6, e.value, e.detail.c_str());
+      progress(text);
+    }
+  }
+};
+
+struct Nodes {
+  std::unique_ptr<dynamics::DynamicsNode> dynamics;
+  std::unique_ptr<bridge::BridgeNode> bridge;
+  std::unique_ptr<bridge::FcNode> fc;
+  std::unique_ptr<linkemu::LinkEmulatorNode> link;
+  std::unique_ptr<agent::ToolServerNode> tools;
+  std::unique_ptr<agent::AirspaceMonitorNode> monitor;
+  std::unique_ptr<agent::ConversationNode> conversation;
+  std::unique_ptr<EpisodeRecorderNode> recorder;
+  std::unique_ptr<LcmLogNode> log;
+
+  std::vector<common::Node*> in_start_order() const {
+    std::vector<common::Node*> out = {recorder.get()};
+    if (log) out.push_back(log.get());
+    for (common::Node* n : std::initializer_list<common::Node*>{dynamics.get(), bridge.get(), fc.get(), link.get(),
+                                                               tools.get(), monitor.get(), conversation.get()}) {
+      out.push_back(n);
+    }
+    return out;
+  }
+  nlohmann::json counters() const {
+    const auto d = dynamics->counters();
+    const auto t = tools->counters();
+    const auto c = conversation->counters();
+    return {{"dynamics", {{"steps", d.steps}, {"commands", d.commands_received}, {"rejected", d.commands_rejected},
+                          {"clamped", d.commands_clamped}, {"stale_steps", d.stale_steps}}},
+            {"conversation", {{"actions_sent", c.actions_sent}, {"observations", c.observations}, {"timeouts", c.timeouts},
+                              {"stale_observations", c.stale_observations}, {"heartbeats", c.heartbeats}}},
+            {"tool_server", {{"link_messages", t.link_messages}, {"malformed_dropped", t.malformed_dropped},
+                             {"mcp_calls", t.mcp_calls}, {"a2a_messages", t.a2a_messages}, {"errors", t.errors},
+                             {"gate_refusals", t.gate_refusals}, {"fc_commands", t.fc_commands},
+                             {"fc_refusals", t.fc_refusals}, {"timeouts", t.timeouts},
+                             {"routes_completed", t.routes_completed}, {"images_captured", t.images_captured},
+                             {"image_bytes_downlinked", t.image_bytes_downlinked}}},
+            {"lcm_log_events", log ? log->events() : 0}};
+  }
+};
+
+Nodes make_nodes(const RigConfigs& cfg, const Scenario& s, const RunOptions& o, bridge::CanBus& can_bridge,
+                 bridge::CanBus& can_fc, bool agent_in_thread) {
+  Nodes n;
+  n.recorder = std::make_unique<EpisodeRecorderNode>(s.mission);
+  if (o.write_lcm_log) {
+    std::filesystem::create_directories(o.out_dir);
+    n.log = std::make_unique<LcmLogNode>(o.out_dir / "episode.lcmlog");
+  }
+  n.dynamics = std::make_unique<dynamics::DynamicsNode>(cfg.dynamics);
+  n.bridge = std::make_unique<bridge::BridgeNode>(can_bridge, cfg.bridge);
+  n.fc = std::make_unique<bridge::FcNode>(can_fc, cfg.fc);
+  n.link = std::make_unique<linkemu::LinkEmulatorNode>(cfg.link);
+  n.tools = std::make_unique<agent::ToolServerNode>(cfg.tool_server);
+  n.monitor = std::make_unique<agent::AirspaceMonitorNode>(cfg.monitor);
+  agent::ConversationConfig conv = cfg.conversation;
+  conv.agent_runs_in_thread = agent_in_thread;
+  n.conversation = std::make_unique<agent::ConversationNode>(conv, make_agent(o));
+  return n;
+}
+
+RunResult finish(const Scenario& s, const RunOptions& o, Nodes& n, const std::string& status, double mission_s,
+                 double wall_s, int64_t start_unix_us, const ProgressFn& progress) {
+  RunResult result;
+  result.status = status;
+  result.mission_time_s = mission_s;
+  result.wall_time_s = wall_s;
+  result.achieved_real_time_factor = wall_s > 0.0 ? mission_s / wall_s : 0.0;
+  const RecordedEpisode rec = n.recorder->snapshot();
+  RunFacts facts;
+  facts.status = status;
+  facts.agent_name = n.conversation ? "a3rig/" + o.agent : o.agent;
+  facts.mission_time_s = mission_s;
+  facts.wall_time_s = wall_s;
+  facts.achieved_real_time_factor = o.runtime == Runtime::kReal ? result.achieved_real_time_factor : 0.0;
+  facts.start_unix_us = start_unix_us;
+  facts.counters = n.counters();
+  if (n.log) n.log->close();
+  result.episode = build_episode(s, o, rec, facts);
+  write_episode(o.out_dir, result.episode);
+  result.episode_path = o.out_dir / "episode.json";
+  if (o.write_plot) result.plot_problem = write_trajectory_plot(o.out_dir, s, rec);
+  if (progress) {
+    char text[200];
+    std::snprintf(text, sizeof text, "episode ended: %s after %.1f s of mission (%.1f s wall)", status.c_str(), mission_s, wall_s);
+    progress(text);
+  }
+  return result;
+}
+
+int64_t unix_now_us() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+RunResult run_virtual(const Scenario& s, const RunOptions& o, const RigConfigs& cfg, const ProgressFn& progress,
+                      const std::atomic<bool>* stop) {
+  const auto wall0 = SteadyClock::now();
+  const int64_t unix0 = unix_now_us();
+  common::VirtualRuntime rt;
+  bridge::VirtualCanBus can(rt.scheduler());
+  auto can_bridge = can.attach("bridge");
+  auto can_fc = can.attach("fc");
+  Nodes n = make_nodes(cfg, s, o, *can_bridge, *can_fc, false);
+  for (common::Node* node : n.in_start_order()) rt.add(*node);
+  Reporter report{progress};
+  std::string status;
+  double t = 0.0, dialogue_end_s = -1.0, crash_s = -1.0;
+  try {
+    while (status.empty()) {
+      t += 0.5;
+      rt.run_until(static_cast<int64_t>(t * 1e6));
+      const RecordedEpisode r = n.recorder->snapshot();
+      report(r);
+      const bool done = n.conversation->finished();
+      if (done && dialogue_end_s < 0.0) dialogue_end_s = t;
+      if (r.last_state.crashed && crash_s < 0.0) crash_s = t;
+      status = end_reason(r, done, t, dialogue_end_s, crash_s, s.mission.time_limit_s);
+      if (status.empty() && stop != nullptr && stop->load()) status = "interrupted";
+    }
+  } catch (const std::exception& e) {
+    status = std::string("node_failed: ") + e.what();
+  }
+  const double wall = std::chrono::duration<double>(SteadyClock::now() - wall0).count();
+  return finish(s, o, n, status, t, wall, unix0, progress);
+}
+
+RunResult run_real(const Scenario& s, const RunOptions& o, const RigConfigs& cfg, const ProgressFn& progress,
+                   const std::atomic<bool>* stop) {
+  const auto wall0 = SteadyClock::now();
+  const int64_t unix0 = unix_now_us();
+  const std::string can_spec = o.can == "userspace" ? "userspace:a3rig-run-" + std::to_string(::getpid()) : o.can;
+  auto can_bridge = bridge::open_can_bus(can_spec);
+  auto can_fc = bridge::open_can_bus(can_spec);
+  const bool agent_in_thread = o.agent == "llm";
+  Nodes n = make_nodes(cfg, s, o, *can_bridge, *can_fc, agent_in_thread);
+  {
+    common::LcmBus probe(o.lcm_url);
+    probe.check_loopback();
+  }
+  const common::WallClock clock(o.real_time_factor);
+  std::vector<std::unique_ptr<common::RealTimeNodeThread>> threads;
+  for (common::Node* node : n.in_start_order()) {
+    threads.push_back(std::make_unique<common::RealTimeNodeThread>(*node, clock, o.lcm_url));
+  }
+  for (auto& th : threads) th->start();
+  Reporter report{progress};
+  std::string status;
+  double dialogue_end_s = -1.0, crash_s = -1.0, mission_s = 0.0;
+  auto last_line = SteadyClock::now();
+  while (status.empty()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    mission_s = clock.now_s();
+    const RecordedEpisode r = n.recorder->snapshot();
+    report(r);
+    for (std::size_t i = 0; i < threads.size() && status.empty(); ++i) {
+      if (!threads[i]->failure().empty()) {
+        status = "node_failed: " + n.in_start_order()[i]->name() + ": " + threads[i]->failure();
+      }
+    }
+    const bool done = n.conversation->finished();
+    if (done && dialogue_end_s < 0.0) dialogue_end_s = mission_s;
+    if (r.last_state.crashed && crash_s < 0.0) crash_s = mission_s;
+    if (status.empty()) status = end_reason(r, done, mission_s, dialogue_end_s, crash_s, s.mission.time_limit_s);
+    if (status.empty() && stop != nullptr && stop->load()) status = "interrupted";
+    if (progress && SteadyClock::now() - last_line > std::chrono::seconds(10)) {
+      last_line = SteadyClock::now();
+      const double wall = std::chrono::duration<double>(last_line - wall0).count();
+      char text[200];
+      std::snprintf(text, sizeof text, "t=%.0f s  z=%.1f m  battery %.0f %%  slice %s  real-time factor %.3f",
+                    mission_s, r.last_state.p_W_m[2], r.last_state.battery_pct, r.last_slice.c_str(), mission_s / wall);
+      progress(text);
+    }
+  }
+  for (auto it = threads.rbegin(); it != threads.rend(); ++it) (*it)->stop_and_join();
+  const double wall = std::chrono::duration<double>(SteadyClock::now() - wall0).count();
+  return finish(s, o, n, status, mission_s, wall, unix0, progress);
+}
+
+}  // namespace
+
+RunResult run_episode(const Scenario& s, const RunOptions& o, const ProgressFn& progress, const std::atomic<bool>* stop) {
+  const RigConfigs cfg = make_rig_configs(s, o);
+  return o.runtime == Runtime::kVirtual ? run_virtual(s, o, cfg, progress, stop) : run_real(s, o, cfg, progress, stop);
+}
+
+}  // namespace a3::rigs

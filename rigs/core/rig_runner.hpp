@@ -1,0 +1,37 @@
+// The orchestrator behind `a3rig run`: builds every node of the rig from a scenario — dynamics,
+// bridge, flight controller (over CAN), link emulator, tool server, airspace monitor, the
+// conversation with its agent, and the recorders — runs them in virtual time (one thread,
+// the discrete-event scheduler, a simulated CAN bus) or in real time (a thread per node, LCM
+// over UDP multicast, a CAN bus of its own), supervises them, and ends the episode when the
+// dialogue is over and the vehicle has landed, at the mission's time limit, on a crash, on
+// Ctrl-C, or when a node fails — writing the episode whatever happened.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "rigs/core/run_options.hpp"
+#include "rigs/core/scenario.hpp"
+
+namespace a3::rigs {
+
+struct RunResult {
+  std::string status;
+  nlohmann::json episode;
+  std::filesystem::path episode_path;
+  std::string plot_problem;  // "" when the plot was written
+  double mission_time_s = 0.0;
+  double wall_time_s = 0.0;
+  double achieved_real_time_factor = 0.0;
+};
+
+using ProgressFn = std::function<void(const std::string& line)>;
+
+// stop: set from a signal handler to end the run early (the episode is still written).
+RunResult run_episode(const Scenario& scenario, const RunOptions& options, const ProgressFn& progress,
+                      const std::atomic<bool>* stop);
+
+}  // namespace a3::rigs

@@ -1,0 +1,32 @@
+// What `a3rig run` was asked to do.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+namespace a3::rigs {
+
+enum class Runtime { kVirtual, kReal };
+
+struct RunOptions {
+  std::string scenario = "survey-field";  // built-in name, file, or alphabench:<path>
+  std::string agent = "scripted";          // scripted | replay:<episode file> | llm
+  std::string think_time = "0";            // see agent/conversation/think_time.hpp
+  Runtime runtime = Runtime::kReal;
+  uint64_t seed = 42;
+  std::filesystem::path out_dir = "out/run";
+  double real_time_factor = 1.0;
+  std::string lcm_url;                     // real time: default udpm ttl=0
+  std::string can = "userspace";           // real time: userspace (private bus) or an interface (vcan0, can0)
+  std::string integrator = "cvode";
+  double dynamics_rate_hz = 250.0;
+  int min_turns = 8;
+  int max_turns = 12;
+  bool write_lcm_log = true;
+  bool write_plot = true;
+  bool quiet = false;
+  std::filesystem::path shared_dir = "../shared";
+};
+
+}  // namespace a3::rigs
