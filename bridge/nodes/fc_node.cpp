@@ -1,6 +1,7 @@
 // The fc node: CAN sensors and commands in, ESC commands and status out.
 #include "bridge/nodes/fc_node.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -52,13 +53,29 @@ void FcNode::reject(const char* what) {
   }
 }
 
+double FcNode::imu_time_s(double rx_s, double interval_s) {
+  // Frames that queued up (a busy bus, a descheduled process) arrive together: their receive
+  // times say nothing of when they were sampled, their integration intervals do. The estimator
+  // only takes differences of these times, so they may run apart from the node's clock.
+  if (imu_time_s_ < 0.0) {
+    imu_time_s_ = rx_s;
+  } else if (interval_s > 0.0) {
+    imu_time_s_ += interval_s;
+  } else {
+    imu_time_s_ += std::max(rx_s - last_imu_rx_s_, 0.0);
+  }
+  last_imu_rx_s_ = rx_s;
+  return imu_time_s_;
+}
+
 void FcNode::subscribe_sensors() {
   dronecan_.subscribe<AhrsRawImu>([this](const AhrsRawImu& m, const ReceivedTransfer&) {
     const auto r = imu_reading(m);
     if (!r) return reject("ahrs.RawIMU");
     ++counters_.imu;
     last_imu_us_ = executor_->clock().now_us();
-    fc_.estimator().on_imu(now_s(), r->gyro_B_radps, r->accel_B_mps2);
+    fc_.estimator().on_imu(imu_time_s(now_s(), r->from_integral ? m.integration_interval : 0.0), r->gyro_B_radps,
+                           r->accel_B_mps2);
   });
   dronecan_.subscribe<GnssFix2>([this](const GnssFix2& m, const ReceivedTransfer&) {
     const auto r = gnss_reading(m, frame_);

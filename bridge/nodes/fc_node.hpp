@@ -9,7 +9,8 @@
 // estimator has attitude and position). Every command, a heartbeat too, keeps the command
 // link alive; a command repeated with the same seq is not executed twice. An accepted command
 // runs a control step at once (step_on_command), so its first ESC frame does not wait for the
-// next tick. It never touches LCM: start()'s bus is not used.
+// next tick. The estimator times IMU samples by their integration intervals, not by when their
+// frames arrived. It never touches LCM: start()'s bus is not used.
 #pragma once
 
 #include <atomic>
@@ -73,6 +74,9 @@ class FcNode final : public common::Node {
   void publish_status();
   void update_health();
   double now_s() const;
+  // The estimator's IMU time: advanced by each report's integration interval (the sensor's own
+  // clock); by the difference of receive times only for a report without one.
+  double imu_time_s(double rx_s, double interval_s);
   void reject(const char* what);
 
   FcNodeConfig config_;
@@ -84,6 +88,7 @@ class FcNode final : public common::Node {
   bool have_command_seq_ = false;
   int32_t last_command_seq_ = 0;
   int64_t last_imu_us_ = -1, last_gnss_us_ = -1, last_baro_us_ = -1;
+  double imu_time_s_ = -1.0, last_imu_rx_s_ = 0.0;
 
   struct AtomicCounters {
     std::atomic<uint64_t> steps{0}, esc_published{0}, status_published{0}, commands{0}, heartbeats{0},

@@ -10,6 +10,8 @@
 
 #include "bridge/nodes/bridge_node.hpp"
 #include "bridge/nodes/fc_node.hpp"
+#include "bridge/nodes/sensor_frames.hpp"
+#include "bridge/fc/state_estimator.hpp"
 #include "tests/bridge_nodes/node_harness.hpp"
 
 namespace a3::bridge {
@@ -178,6 +180,43 @@ TEST(FcNode, AnAcceptedCommandReachesTheEscsWithoutWaitingForTheNextTick) {
   EXPECT_LT(at_once_max, 600.0);
   EXPECT_GT(tick_sum / phases, 1000.0);
   EXPECT_GT(tick_max, 2500.0);
+}
+
+
+// A RawIMU at rest or turning at yaw_rate_radps (FLU), covering interval_s.
+AhrsRawImu imu_report(double yaw_rate_radps, double interval_s) {
+  ImuIntegrator imu;
+  imu.add(0.0, Eigen::Vector3d(0, 0, yaw_rate_radps), Eigen::Vector3d(0, 0, 9.80665));
+  imu.add(interval_s, Eigen::Vector3d(0, 0, yaw_rate_radps), Eigen::Vector3d(0, 0, 9.80665));
+  return imu.take_report(0);
+}
+
+TEST(FcNode, ImuReportsThatArriveTogetherAreIntegratedOverTheirOwnIntervals) {
+  // 150 ms of IMU reports held up (a stalled sender) then sent at once: the estimator must turn
+  // by what the reports say (0.5 rad/s for 150 ms), not by the few milliseconds they took to
+  // cross the bus. (30 reports of 7 frames: within the port's 256-frame queue.)
+  common::VirtualRuntime rt;
+  VirtualCanBus can(rt.scheduler());
+  std::unique_ptr<CanBus> port = can.attach("fc");
+  CanPeer peer(can, 20);
+  FcNode fc(*port, FcNodeConfig{});
+  rt.add(fc);
+  peer.start(rt.scheduler());
+  peer.publish(make_magnetic_field(kEarthFieldGauss * earth_field_direction_W(), 0.0));  // facing east
+  for (int k = 1; k <= 40; ++k) {  // at rest, 5 ms apart: the estimator initialises
+    rt.run_until(5000 * k);
+    peer.publish(imu_report(0.0, 0.005));
+  }
+  rt.run_until(210'000);
+  const double yaw0 = fc.controller().status().yaw_deg;
+  rt.run_until(350'000);  // nothing for 140 ms, then 30 reports in one burst
+  for (int k = 0; k < 30; ++k) ASSERT_TRUE(peer.publish(imu_report(0.5, 0.005)));
+  rt.run_until(500'000);
+  const double turned_deg = fc.controller().status().yaw_deg - yaw0;
+  std::cout << "a burst of 30 IMU reports of 5 ms at 0.5 rad/s: the estimate turned " << turned_deg
+            << " degrees (expected " << 0.5 * 0.15 * 180 / M_PI << ")\n";
+  EXPECT_NEAR(yaw0, 0.0, 0.5);
+  EXPECT_NEAR(turned_deg, 0.5 * 0.15 * 180 / M_PI, 0.1);
 }
 
 }  // namespace
