@@ -84,6 +84,9 @@ linkemu::LinkEmulatorConfig build_config(const LinkemuArgs& args) {
                           : linkemu::load_link_emulator_config(args.config);
   if (args.seed) c.seed = *args.seed;
   if (!args.slice.empty()) c.initial_slice = linkemu::parse_slice(args.slice);
+  if (!args.slice.empty() && (c.trace || !args.trace.empty())) {
+    common::log_warn("linkemu", "--slice is ignored: a trace decides the slice");
+  }
   if (!args.start_regime.empty()) c.start_regime = linkemu::parse_start_regime(args.start_regime);
   if (args.degraded_share) c.degraded_share = *args.degraded_share;
   if (args.degraded_dwell_s) c.degraded_dwell_mean_s = *args.degraded_dwell_s;

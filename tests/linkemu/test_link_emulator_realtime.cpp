@@ -35,7 +35,8 @@ void expect_timely(const std::vector<test::Received>& rx, std::size_t expected, 
   for (std::size_t i = 0; i < rx.size(); ++i) {
     const auto& r = rx[i];
     EXPECT_GE(r.recv_us, r.message.utime_us) << "message " << r.message.message_id << " arrived early";
-    EXPECT_LT(r.recv_us - r.message.utime_us, 50 * kMs) << "message " << r.message.message_id;
+    // Generous: a loaded 2-CPU machine can hold a thread off its CPU for tens of ms.
+    EXPECT_LT(r.recv_us - r.message.utime_us, 500 * kMs) << "message " << r.message.message_id;
     EXPECT_GE(r.message.utime_us - r.message.sent_utime_us, floor_us);
     if (i > 0) {
       EXPECT_GT(r.message.message_id, rx[i - 1].message.message_id);
@@ -56,7 +57,7 @@ TEST(LinkEmulatorRealTime, RelaysOnItsOwnThreadWithTheEmulatedTiming) {
   }
   client.start(thread.executor(), thread.bus());
   thread.start();
-  wait_until(clock, 1500 * kMs);
+  wait_until(clock, 3000 * kMs);  // the last message is due at ~1.2 s
   thread.stop_and_join();
   ASSERT_EQ(thread.failure(), "");
 
@@ -95,7 +96,7 @@ TEST(LinkEmulatorRealTime, RelaysBetweenTwoLcmBusesOverUdpm) {
   common::RealTimeNodeThread client_thread(client, clock, url);
   node_thread.start();
   client_thread.start();
-  wait_until(clock, 1200 * kMs);
+  wait_until(clock, 2500 * kMs);  // the last message is due at ~0.7 s
   client_thread.stop_and_join();
   node_thread.stop_and_join();
   expect_timely(client.up_rx, 50, 7 * kMs);
