@@ -11,8 +11,8 @@
 //      >= 20,000 messages/s per direction.
 // Usage: bench_linkemu_realtime [--seconds S] [--rate R] [--busy N] [--no-sweep]
 //                               [--sweep-seconds S] [--transport udpm|memq|both] [--rt-priority P]
-// The "FIFO" rows run the node's threads (and the receiver's) SCHED_FIFO at --rt-priority
-// (default 50; 0 skips them), as `a3rig node linkemu --rt-priority` does.
+// The "FIFO" rows run the node's threads SCHED_FIFO at --rt-priority (default 50; 0 skips
+// them), as `a3rig node linkemu --rt-priority` does, and a udpm receiver's 10 below it.
 #include <unistd.h>
 
 #include <algorithm>
@@ -206,10 +206,13 @@ RunResult run_udpm(double rate, double seconds, bool collect_errors, int rt_prio
   const common::WallClock clock;
   LinkEmulatorNode node(config);
   node.set_lateness_capacity(collect_errors ? 4'000'000 : 0);
-  // The node's and the receiver's threads (and their LCM receive threads) are created in a
-  // real-time scope when rt_priority > 0; the sender stays SCHED_OTHER.
+  // With rt_priority > 0 the node's threads (its executor, its LCM receive thread) run
+  // SCHED_FIFO at rt_priority, the receiver's at rt_priority - 10 (the link outranks its
+  // clients, as in a rig); the sender stays SCHED_OTHER.
   std::optional<ScopedRealtimePriority> realtime(std::in_place, rt_priority);
   common::RealTimeNodeThread node_thread(node, clock, kUrl);
+  node_thread.start();
+  realtime.emplace(rt_priority > 10 ? rt_priority - 10 : rt_priority);
 
   RunResult result;
   std::atomic<bool> stop_receiver{false};
@@ -233,7 +236,6 @@ RunResult run_udpm(double rate, double seconds, bool collect_errors, int rt_prio
     while (!stop_receiver) receiver_bus.handle_timeout(20);
   });
 
-  node_thread.start();
   realtime.reset();
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // let the node subscribe
 
