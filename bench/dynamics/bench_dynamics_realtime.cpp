@@ -17,7 +17,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cctype>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <set>
+#include <sstream>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -87,6 +92,36 @@ pid_t spawn_burner() {
   return pid;
 }
 
+// Threads of other processes under SCHED_FIFO or SCHED_RR: they preempt every normal thread,
+// this benchmark's included, and make its figures say nothing about the dynamics node.
+std::string other_realtime_threads() {
+  std::set<std::string> names;
+  const auto self = std::to_string(getpid());
+  std::error_code ec;
+  for (const auto& proc : std::filesystem::directory_iterator("/proc", ec)) {
+    const std::string pid = proc.path().filename();
+    if (pid.empty() || !std::isdigit(static_cast<unsigned char>(pid[0])) || pid == self) continue;
+    std::ifstream cmdline(proc.path() / "cmdline");
+    if (cmdline.peek() == std::char_traits<char>::eof()) continue;  // a kernel thread
+    std::error_code ec2;
+    for (const auto& task : std::filesystem::directory_iterator(proc.path() / "task", ec2)) {
+      std::ifstream f(task.path() / "stat");
+      std::string stat((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+      const auto open = stat.find('('), close = stat.rfind(')');
+      if (open == std::string::npos || close == std::string::npos) continue;
+      std::istringstream rest(stat.substr(close + 2));
+      std::string field;
+      // Fields after the name start at 3 (state); the policy is field 41.
+      for (int i = 3; i <= 41 && rest >> field; ++i) {
+        if (i == 41 && (field == "1" || field == "2")) names.insert(stat.substr(open + 1, close - open - 1) + "[" + pid + "]");
+      }
+    }
+  }
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out.empty() ? "none" : out;
+}
+
 std::string load_average() {
   std::ifstream f("/proc/loadavg");
   std::string a, b, c;
@@ -106,12 +141,14 @@ int main(int argc, char** argv) {
   int burners = 1;
   std::string integrator = "cvode";
   std::string url = "udpm://239.255.76.67:7691?ttl=0";
+  std::string dump;
   app.add_option("--duration-s", duration_s, "wall seconds measured, after a 1 s warm-up (default 60)")
       ->check(CLI::PositiveNumber);
   app.add_option("--rtf", rtf, "real-time factor (default 1)")->check(CLI::PositiveNumber);
   app.add_option("--burners", burners, "CPU-burning child processes (default 1)")->check(CLI::Range(0, 16));
   app.add_option("--integrator", integrator, "cvode (default) or ode")->check(CLI::IsMember({"cvode", "ode"}));
   app.add_option("--lcm-url", url, "LCM URL (default: a port of its own, away from other runs)");
+  app.add_option("--dump", dump, "write each step's lateness (us) and each state's arrival lateness to this CSV");
   CLI11_PARSE(app, argc, argv);
 
   const double warmup_s = 1.0;
@@ -130,6 +167,7 @@ int main(int argc, char** argv) {
   std::vector<pid_t> burner_pids;
   for (int i = 0; i < burners; ++i) burner_pids.push_back(spawn_burner());
   const std::string load_before = load_average();
+  const std::string realtime_before = other_realtime_threads();
   arrivals_thread.start();
   dyn_thread.start();
   controller_thread.start();
@@ -142,6 +180,7 @@ int main(int argc, char** argv) {
     waitpid(pid, nullptr, 0);
   }
   const std::string load_after = load_average();
+  const std::string realtime_after = other_realtime_threads();
 
   // Step lateness after the warm-up (the executor keeps them in run order).
   std::vector<double> step_late = dyn_thread.executor().lateness_samples_us();
@@ -167,6 +206,12 @@ int main(int argc, char** argv) {
     wall_s = (measured.back().mono_ns - measured.front().mono_ns) * 1e-9;
     achieved = (measured.back().utime_us - measured.front().utime_us) * 1e-6 / wall_s;
   }
+  if (!dump.empty()) {
+    std::ofstream out(dump);
+    out << "kind,index_or_utime_us,lateness_us\n";
+    for (std::size_t i = 0; i < step_late.size(); ++i) out << "step," << i << ',' << step_late[i] << '\n';
+    for (const auto& a : measured) out << "state," << a.utime_us << ',' << (a.mono_ns - clock.mono_ns_at(a.utime_us)) * 1e-3 << '\n';
+  }
   const auto c = dyn.counters();
   const double expected_states = duration_s * rtf * config.publish_rate_hz + 1;
 
@@ -175,6 +220,8 @@ int main(int argc, char** argv) {
               "warm-up; load average before %s, after %s; %u cores\n",
               integrator.c_str(), config.publish_rate_hz, rtf, url.c_str(), burners, duration_s, warmup_s,
               load_before.c_str(), load_after.c_str(), std::thread::hardware_concurrency());
+  std::printf("other processes' SCHED_FIFO/RR threads (they preempt this run): before %s; after %s\n",
+              realtime_before.c_str(), realtime_after.c_str());
   std::printf("%-36s %9s %9s %9s %8s %9s\n", "lateness against the schedule", "p50 us", "p99 us", "max us", "n", "> 1 ms");
   std::printf("%-36s %9.0f %9.0f %9.0f %8zu %9zu\n", "dynamics step start (executor)", steps.p50, steps.p99, steps.max,
               steps.count, steps.over_1ms);

@@ -28,10 +28,11 @@ trap 'rm -f "$csv" "$log"' EXIT
 echo "== 1. virtual time: simulated seconds per wall second"
 "$build/bench/bench_dynamics_virtual" --sim-s "$sim_s" --csv "$csv" --csv-s $((12 + py_s + 1)) 2>/dev/null | tee "$log"
 cvode_rtf=$(awk '/^cvode calm / {sub("x", "", $3); print $3}' "$log")
+cvode_cpu_rtf=$(awk '/^cvode calm / {sub("x", "", $4); print $4}' "$log")
 
 echo
 echo "== 2. the same equations in Python (SciPy solve_ivp), same flight"
-python3 "$here/scipy_model.py" "$csv" --duration-s "$py_s" --cpp-rtf "$cvode_rtf"
+python3 "$here/scipy_model.py" "$csv" --duration-s "$py_s" --cpp-rtf "$cvode_rtf" --cpp-cpu-rtf "$cvode_cpu_rtf"
 
 echo
 echo "== 3. real time at factor 1 with a CPU-burning process"

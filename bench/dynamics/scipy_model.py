@@ -12,6 +12,7 @@ same parameters (read from dynamics/airframes/iris.json), same tolerances as the
 integrator, the quaternion renormalised after a step as the C++ integrator does.
 
 Usage: scipy_model.py FLIGHT.csv [--from-s 12] [--duration-s 60] [--methods RK45,DOP853,LSODA]
+                       [--rtol 1e-8] [--cpp-rtf N] [--cpp-cpu-rtf N]
 Debian packages: python3-scipy python3-numpy.
 """
 import argparse
@@ -120,7 +121,7 @@ def state_of(row):
 
 def fly(model, rows, first, steps, method, rtol, atol):
     y = state_of(rows[first])
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     for k in range(first, first + steps):
         cmd = tuple(float(rows[k]["cmd%d" % i]) for i in range(4))
         t = float(rows[k]["t_s"])
@@ -131,7 +132,7 @@ def fly(model, rows, first, steps, method, rtol, atol):
         n = math.sqrt(float(np.dot(y[6:10], y[6:10])))
         if abs(n - 1.0) > 1e-9:
             y[6:10] /= n
-    return y, time.perf_counter() - t0
+    return y, time.perf_counter() - t0, time.process_time() - c0
 
 
 def main():
@@ -142,7 +143,10 @@ def main():
     ap.add_argument("--from-s", type=float, default=12.0, help="start of the replayed segment (airborne)")
     ap.add_argument("--duration-s", type=float, default=60.0)
     ap.add_argument("--methods", default="RK45,DOP853,LSODA")
-    ap.add_argument("--cpp-rtf", type=float, default=0.0, help="the C++ figure to compare with")
+    ap.add_argument("--rtol", type=float, default=RTOL,
+                    help="relative tolerance (default CVODE's 1e-8; absolute ones scale with it)")
+    ap.add_argument("--cpp-rtf", type=float, default=0.0, help="the C++ figure to compare with (wall)")
+    ap.add_argument("--cpp-cpu-rtf", type=float, default=0.0, help="the C++ figure to compare with (CPU)")
     args = ap.parse_args()
 
     with open(args.airframe) as f:
@@ -155,15 +159,17 @@ def main():
                  % (args.flight_csv, len(rows) / 100.0, args.from_s + args.duration_s))
     ref = state_of(rows[first + steps])
     print("SciPy %s solve_ivp on the same flight: %.0f s from t = %.0f s, commands held 10 ms each, "
-          "rtol %g, the CVODE integrator's absolute tolerances" % (__import__("scipy").__version__,
-                                                                  args.duration_s, args.from_s, RTOL))
-    print("%-8s %10s %12s %22s %12s" % ("method", "wall s", "x real time", "final |dp| vs C++ (mm)", "C++/Python"))
+          "rtol %g, the CVODE integrator's absolute tolerances x %g" % (
+              __import__("scipy").__version__, args.duration_s, args.from_s, args.rtol, args.rtol / RTOL))
+    print("%-8s %8s %10s %10s %22s %11s %11s" % ("method", "wall s", "xRT", "(CPU)", "final |dp| vs C++ (mm)",
+                                                "C++/Python", "(CPU)"))
     for method in args.methods.split(","):
-        y, wall = fly(model, rows, first, steps, method, RTOL, ATOL)
+        y, wall, cpu = fly(model, rows, first, steps, method, args.rtol, ATOL * (args.rtol / RTOL))
         dp = float(np.linalg.norm(y[0:3] - ref[0:3])) * 1000.0
-        rtf = args.duration_s / wall
-        ratio = ("%11.0fx" % (args.cpp_rtf / rtf)) if args.cpp_rtf > 0 else "%12s" % "-"
-        print("%-8s %10.2f %11.1fx %22.3f %s" % (method, wall, rtf, dp, ratio))
+        rtf, cpu_rtf = args.duration_s / wall, args.duration_s / cpu
+        ratio = ("%10.0fx" % (args.cpp_rtf / rtf)) if args.cpp_rtf > 0 else "%11s" % "-"
+        cpu_ratio = ("%10.0fx" % (args.cpp_cpu_rtf / cpu_rtf)) if args.cpp_cpu_rtf > 0 else "%11s" % "-"
+        print("%-8s %8.2f %9.1fx %9.1fx %22.3f %s %s" % (method, wall, rtf, cpu_rtf, dp, ratio, cpu_ratio))
         sys.stdout.flush()
 
 
