@@ -11,6 +11,8 @@ namespace {
 constexpr double kArrivedDistance_m = 0.5;
 constexpr double kArrivedSpeed_mps = 0.3;
 constexpr double kOnGroundAltitude_m = 0.3;
+constexpr double kLandDetectAltitude_m = 2.0;     // the estimate may be off by this much at touchdown
+constexpr double kLandDetectThrustShare = 0.75;   // of the hover thrust
 
 bool finite(const Eigen::Vector3d& v) { return v.allFinite(); }
 
@@ -350,16 +352,6 @@ FcOutput FlightController::step(double t_s) {
       // Full descent speed down to 10 m, then the gentle landing speed.
       v_sp.z() = -std::clamp(0.3 * (e.p_W_m.z() - 10.0) + l.land_speed_mps, l.land_speed_mps, l.max_descent_speed_mps);
       integrate_xy = e.p_W_m.z() > 1.0;
-      const bool still = e.p_W_m.z() < kOnGroundAltitude_m && std::abs(e.v_W_mps.z()) < 0.2;
-      if (still) {
-        if (landed_since_s_ < 0.0) landed_since_s_ = t_s;
-        if (t_s - landed_since_s_ > 1.0) {
-          enter(FcMode::kDisarmed);
-          return out;
-        }
-      } else {
-        landed_since_s_ = -1.0;
-      }
       break;
     }
     case FcMode::kDisarmed:
@@ -370,6 +362,24 @@ FcOutput FlightController::step(double t_s) {
     v_sp = brake_before_fence(e.p_W_m, v_sp);
   }
   const ThrustSetpoint ts = position_.thrust(e.v_W_mps, v_sp, yaw_sp_rad_, dt, integrate_xy);
+  if (status_.mode == FcMode::kLand) {
+    // Land detection as autopilots do it: low over the ground estimate, no vertical motion
+    // although it is asked to descend, and the thrust wound down well below hover (the ground
+    // carries the weight) — for a second. The thrust test keeps an altitude error from
+    // disarming it in the air.
+    const double hover_thrust_N = params_.vehicle.mass_kg * 9.80665;
+    const bool landed = e.p_W_m.z() < kLandDetectAltitude_m && std::abs(e.v_W_mps.z()) < 0.25 &&
+                        ts.thrust_N < kLandDetectThrustShare * hover_thrust_N;
+    if (landed) {
+      if (landed_since_s_ < 0.0) landed_since_s_ = t_s;
+      if (t_s - landed_since_s_ > 1.0) {
+        enter(FcMode::kDisarmed);
+        return out;
+      }
+    } else {
+      landed_since_s_ = -1.0;
+    }
+  }
   const Eigen::Vector3d w_sp = attitude_.rate_setpoint(e.q_WB, ts.q_sp);
   // No rate integration while the feet may touch the ground (the ground holds the attitude).
   const Eigen::Vector3d torque = attitude_.torque(e.w_B_radps, w_sp, e.p_W_m.z() > 1.0 ? dt : 0.0);

@@ -13,7 +13,8 @@
 namespace a3::bridge {
 
 struct EstimatorNoise {
-  double accel_mps2 = 0.05;       // accelerometer noise (process noise of the position filter)
+  double accel_mps2 = 0.25;       // process noise of the position filter: accelerometer noise plus
+                                  // what the attitude estimate gets wrong (a tilt error is a bias)
   double gnss_position_m = 0.3;   // horizontal; vertical is 1.5 × this
   double gnss_velocity_mps = 0.05;
   double baro_altitude_m = 0.1;

@@ -119,7 +119,9 @@ A3_REGISTER_COMMAND("10-run", [](CLI::App& app) {
   cmd->add_option("--out", args->out, "output folder (default out/run)");
   cmd->add_option("--rtf", o.real_time_factor, "real time: simulated seconds per wall second (default 1)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--lcm-url", o.lcm_url, "real time: LCM URL (default $LCM_DEFAULT_URL, else udpm ttl=0)");
+  cmd->add_option("--lcm-url", o.lcm_url,
+                  "real time: LCM URL (default $LCM_DEFAULT_URL, else a port of its own on udpm://239.255.76.67, "
+                  "ttl=0, printed at the start: give it to lcm-spy)");
   cmd->add_option("--can", o.can,
                   "real time: the CAN bus between bridge and flight controller: userspace (a private bus, default), "
                   "or an interface such as vcan0 or can0 (SocketCAN)");

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <memory>
 #include <thread>
@@ -165,6 +166,15 @@ RunResult finish(const Scenario& s, const RunOptions& o, Nodes& n, const std::st
   return result;
 }
 
+// A run's own LCM port on the usual multicast group (the loopback route covers the group, any
+// port), so that two runs on one host never hear each other; an explicit URL or
+// $LCM_DEFAULT_URL wins.
+std::string private_lcm_url(const std::string& requested) {
+  if (!requested.empty()) return requested;
+  if (const char* env = std::getenv("LCM_DEFAULT_URL"); env != nullptr && *env != '\0') return env;
+  return "udpm://239.255.76.67:" + std::to_string(7668 + ::getpid() % 20000) + "?ttl=0";
+}
+
 int64_t unix_now_us() {
   return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
@@ -210,14 +220,16 @@ RunResult run_real(const Scenario& s, const RunOptions& o, const RigConfigs& cfg
   auto can_fc = bridge::open_can_bus(can_spec);
   const bool agent_in_thread = o.agent == "llm";
   Nodes n = make_nodes(cfg, s, o, *can_bridge, *can_fc, agent_in_thread);
+  const std::string lcm_url = private_lcm_url(o.lcm_url);
   {
-    common::LcmBus probe(o.lcm_url);
+    common::LcmBus probe(lcm_url);
     probe.check_loopback();
   }
+  if (progress) progress("LCM: " + lcm_url + "  CAN: " + can_bridge->name());
   const common::WallClock clock(o.real_time_factor);
   std::vector<std::unique_ptr<common::RealTimeNodeThread>> threads;
   for (common::Node* node : n.in_start_order()) {
-    threads.push_back(std::make_unique<common::RealTimeNodeThread>(*node, clock, o.lcm_url));
+    threads.push_back(std::make_unique<common::RealTimeNodeThread>(*node, clock, lcm_url));
   }
   for (auto& th : threads) th->start();
   Reporter report{progress};
