@@ -91,6 +91,7 @@ class GroundStation final : public common::Node {
 };
 
 struct LoopOptions {
+  std::string airframe;  // built-in name or file; "" = the default (Iris)
   Eigen::Vector3d mean_wind_W_mps = Eigen::Vector3d::Zero();
   bool turbulence = false;
   uint64_t seed = 1;
@@ -105,6 +106,7 @@ class ClosedLoop {
   explicit ClosedLoop(const LoopOptions& o = {})
       : can_(rt_.scheduler()), fc_port_(can_.attach("fc")), bridge_port_(can_.attach("bridge")) {
     dynamics::DynamicsNodeConfig dc;
+    if (!o.airframe.empty()) dc.params = dynamics::airframe_by_name_or_path(o.airframe);
     dc.publish_rate_hz = o.dynamics_rate_hz;
     dc.mean_wind_W_mps = o.mean_wind_W_mps;
     dc.turbulence = dynamics::TurbulenceParams{o.turbulence, 10.0, 0.05};

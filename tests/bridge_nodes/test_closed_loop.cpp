@@ -74,6 +74,18 @@ TEST(ClosedLoop, TakesOffToTenMetresAndHoldsInStillAir) {
   std::cout << "CAN bus load " << loop.can().stats().load(35'000'000) * 100 << " %\n";
 }
 
+TEST(ClosedLoop, FliesTheHeavyLiftAirframeWhenToldIt) {
+  LoopOptions o;
+  o.airframe = "heavy-lift";  // the fc's vehicle section comes from the same airframe
+  ClosedLoop loop(o);
+  take_off(loop, 10.0);
+  loop.run_until(20.0);
+  const double rms = altitude_rms_m(loop, 10.0, 10.0);
+  std::cout << "full loop, heavy-lift airframe, hold at 10 m: altitude RMS error " << rms << " m\n";
+  EXPECT_LE(rms, 0.1);
+  EXPECT_LT(loop.p_W_m().head<2>().norm(), 0.5);
+}
+
 TEST(ClosedLoop, HoldsInEightMetrePerSecondWindWithTurbulence) {
   LoopOptions o;
   o.mean_wind_W_mps = dynamics::wind_from_report(8.0, 240.0);
