@@ -10,6 +10,8 @@
 namespace a3::dynamics {
 namespace {
 
+constexpr double kMaxStep_s = 0.5;
+
 void check(int flag, const char* what) {
   if (flag < 0) {
     throw std::runtime_error(std::string("CVODE: ") + what + " failed: " + CVodeGetReturnFlagName(flag));
@@ -55,6 +57,9 @@ CvodeIntegrator::CvodeIntegrator(const QuadrotorModel& model, WindField& wind, d
   if (nonlinear_solver_ == nullptr) throw std::runtime_error("CVODE: SUNNonlinSol_FixedPoint failed");
   check(CVodeSetNonlinearSolver(cvode_, nonlinear_solver_), "CVodeSetNonlinearSolver");
   check(CVodeSetMaxNumSteps(cvode_, 200000), "CVodeSetMaxNumSteps");
+  // While nothing changes (idle on the ground) the steps would grow to minutes: cap them so
+  // the wind is sampled at its own pace and the solver never reaches far past the present.
+  check(CVodeSetMaxStep(cvode_, kMaxStep_s), "CVodeSetMaxStep");
   check(CVodeRootInit(cvode_, 2, &CvodeIntegrator::roots), "CVodeRootInit");
   check(CVodeSetNoInactiveRootWarn(cvode_), "CVodeSetNoInactiveRootWarn");
 }

@@ -12,7 +12,7 @@ namespace a3::dynamics {
 namespace {
 
 constexpr double kFeetPerMetre = 3.28084;
-constexpr std::size_t kKeptSamples = 400;  // 20 s at 20 Hz: how far back queries may go
+constexpr std::size_t kKeptSamples = 12000;  // 10 min at 20 Hz: how far back queries may go
 
 }  // namespace
 

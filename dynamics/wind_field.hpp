@@ -35,7 +35,7 @@ class WindField {
   // mean_W_mps: the mean wind; seed and stream name select the turbulence sequence.
   WindField(const Eigen::Vector3d& mean_W_mps, const TurbulenceParams& turbulence, uint64_t seed);
 
-  // The wind at time t_s (>= 0). Queries may go back in time by up to a few seconds.
+  // The wind at time t_s (>= 0). Queries may go back up to 10 minutes behind the latest one.
   Eigen::Vector3d wind_W_mps(double t_s);
 
   const Eigen::Vector3d& mean_W_mps() const { return mean_W_mps_; }

@@ -1,6 +1,7 @@
 // The conversation loop.
 #include "agent/conversation/conversation_node.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "a3lcm/episode_event_t.hpp"
@@ -219,19 +220,20 @@ void ConversationNode::wait_for_user_trigger() {
   const bool hard = is_hard_network(v.net);
   v.network_degraded = hard && !degraded_at_last_user_turn_;
   const auto& s = tracker_.state();
-  double nearest = 1e18;
-  std::string nearest_id;
+  // Each approach of a peer is reported once; a yielding peer is being dealt with.
+  std::string alert;
   for (const auto& t : traffic_) {
     const double d = std::sqrt(std::pow(t.p_W_m[0] - s.p_W_m[0], 2) + std::pow(t.p_W_m[1] - s.p_W_m[1], 2) +
                                std::pow(t.p_W_m[2] - s.p_W_m[2], 2));
-    if (d < nearest) {
-      nearest = d;
-      nearest_id = t.id;
+    const bool known = std::find(alerted_peers_.begin(), alerted_peers_.end(), t.id) != alerted_peers_.end();
+    if (d > 1.5 * config_.traffic_alert_distance_m && known) {
+      alerted_peers_.erase(std::remove(alerted_peers_.begin(), alerted_peers_.end(), t.id), alerted_peers_.end());
+    } else if (d < config_.traffic_alert_distance_m && !known && !s.on_ground && t.status != "yielding" && alert.empty()) {
+      alert = t.id + " at " + std::to_string(static_cast<int>(d)) + " m";
+      pending_alert_peer_ = t.id;
     }
   }
-  if (nearest < config_.traffic_alert_distance_m && !s.on_ground) {
-    v.traffic_alert = nearest_id + " at " + std::to_string(static_cast<int>(nearest)) + " m";
-  }
+  v.traffic_alert = alert;
   v.landed_after_flight = has_flown_ && s.on_ground && !tracker_.fc_status().armed;
   int done = 0;
   std::string names;
@@ -249,6 +251,7 @@ void ConversationNode::wait_for_user_trigger() {
                        v.landed_after_flight || waited >= config_.user_max_wait_s;
   if (!trigger) return;
   executor_->cancel(user_timer_);
+  if (!v.traffic_alert.empty()) alerted_peers_.push_back(pending_alert_peer_);
   degraded_at_last_user_turn_ = hard;
   done_at_last_user_turn_ = done;
   const UserUtterance u = user_.speak(v);

@@ -120,6 +120,8 @@ class ConversationNode final : public common::Node {
   bool has_flown_ = false;
   nlohmann::json last_telemetry_;
   std::vector<a3lcm::traffic_state_t> traffic_;
+  std::vector<std::string> alerted_peers_;  // approaches already reported
+  std::string pending_alert_peer_;
 
   // A decision running on a thread (real time, blocking agent).
   std::thread agent_thread_;

@@ -76,6 +76,11 @@ void EpisodeRecorderNode::start(common::Executor&, common::Bus& bus) {
   bus.subscribe<a3lcm::fc_status_t>(ch::kFcStatus, [this](const a3lcm::fc_status_t& s, int64_t) {
     std::lock_guard<std::mutex> lock(mutex_);
     tracker_.on_fc_status(s);
+    static constexpr const char* kModes[] = {"disarmed", "takeoff", "hold", "goto", "land", "return_home", "emergency"};
+    static constexpr const char* kFailsafes[] = {"none", "link_loss", "low_battery", "geofence", "altitude"};
+    const std::string mode = s.mode >= 0 && s.mode <= 6 ? kModes[s.mode] : "unknown";
+    if (rec_.fc_modes.empty() || rec_.fc_modes.back() != mode) rec_.fc_modes.push_back(mode);
+    if (s.failsafe > 0 && s.failsafe <= 4 && s.failsafe != rec_.last_fc.failsafe) rec_.fc_failsafes.push_back(kFailsafes[s.failsafe]);
     rec_.last_fc = s;
   });
   bus.subscribe<a3lcm::payload_event_t>(ch::kPayload, [this](const a3lcm::payload_event_t& e, int64_t) {

@@ -41,6 +41,8 @@ struct RecordedEpisode {
   double max_altitude_m = 0.0;
   double max_speed_mps = 0.0;
   std::string last_slice;
+  std::vector<std::string> fc_modes;      // the flight controller's modes, in the order entered
+  std::vector<std::string> fc_failsafes;  // failsafes it raised, in order
   nlohmann::json objectives;              // MissionTracker::to_json()
   bool objectives_all_done = false;
   uint64_t states = 0;

@@ -117,6 +117,7 @@ nlohmann::json build_episode(const Scenario& s, const RunOptions& o, const Recor
         {"turns", turns_rig},
         {"link", {{"up", link_json(rec.up)}, {"down", link_json(rec.down)}}},
         {"safety_events", events},
+        {"flight_controller", {{"modes", rec.fc_modes}, {"failsafes", rec.fc_failsafes}}},
         {"objectives", rec.objectives},
         {"trajectory", {{"columns", {"t_s", "x_m", "y_m", "z_m", "battery_pct", "speed_mps"}},
                         {"samples_1hz", trajectory},
