@@ -186,7 +186,7 @@ int main(int argc, char** argv) {
   common::RealTimeNodeThread vehicle_thread(vehicle, clock, lcm_url), ground_thread(ground, clock, lcm_url);
   vehicle_thread.start();
   ground_thread.start();
-  EscWatcher watcher(*can, clock);
+  auto watcher = std::make_unique<EscWatcher>(*can, clock);
 
   std::this_thread::sleep_for(std::chrono::seconds(2));  // processes up, estimator valid
   std::mt19937 rng(7);
@@ -197,7 +197,7 @@ int main(int argc, char** argv) {
     const bool start = i % 2 == 0;
     std::this_thread::sleep_for(std::chrono::microseconds(gap_us(rng)));
     const int64_t t0 = ground.send(start ? a3lcm::fc_command_t::TAKEOFF : a3lcm::fc_command_t::DISARM);
-    const int64_t t1 = watcher.wait_for(start, t0, std::chrono::milliseconds(500));
+    const int64_t t1 = watcher->wait_for(start, t0, std::chrono::milliseconds(500));
     if (t1 < 0) {
       // Not reflected within 0.5 s: counted as missed (the next command's change is still
       // timed from its own publication).
@@ -206,13 +206,20 @@ int main(int argc, char** argv) {
     }
     latency_ms.push_back((t1 - t0) * 1e-3);
   }
-  const uint64_t esc_frames = watcher.frames();
+  const uint64_t esc_frames = watcher->frames();
   vehicle_thread.stop_and_join();
   ground_thread.stop_and_join();
   kill(fc, SIGTERM);
   kill(br, SIGTERM);
   waitpid(fc, nullptr, 0);
   waitpid(br, nullptr, 0);
+  const std::string private_prefix = "userspace:bench-fc-";
+  if (can_spec.rfind(private_prefix, 0) == 0) {  // the bus made for this run: leave nothing behind
+    const std::string name = can_spec.substr(std::string("userspace:").size());
+    watcher.reset();
+    can.reset();
+    std::filesystem::remove_all(bridge::UserspaceCanBus::default_root() / name);
+  }
 
   if (latency_ms.empty()) {
     std::printf("no command reached the ESC frames (%d missed); is LCM multicast looped back? (scripts/lcm-loopback.sh)\n",
@@ -223,7 +230,7 @@ int main(int argc, char** argv) {
   for (double v : latency_ms) mean += v;
   mean /= latency_ms.size();
   std::printf("A3_FC_CMD -> first esc.RawCommand reflecting it (%s, fc %s), %zu commands (%d missed), %llu ESC frames seen\n",
-              can->name().c_str(), no_step_on_command ? "steps on its 250 Hz tick only" : "steps at once on a command",
+              can_spec.c_str(), no_step_on_command ? "steps on its 250 Hz tick only" : "steps at once on a command",
               latency_ms.size(), missed, static_cast<unsigned long long>(esc_frames));
   std::printf("  mean %.3f ms  p50 %.3f ms  p90 %.3f ms  p99 %.3f ms  max %.3f ms   (goal: p99 <= 5 ms)\n", mean,
               percentile(latency_ms, 0.5), percentile(latency_ms, 0.9), percentile(latency_ms, 0.99),
