@@ -89,8 +89,11 @@ void LcmBus::unsubscribe(SubscriptionId id) {
 int LcmBus::fileno() { return lcm_->getFileno(); }
 
 int LcmBus::handle_ready() {
+  // Bounded, so that a steady stream on one channel cannot starve the executor's timers
+  // (the fd stays readable; the executor comes back for the rest).
+  constexpr int kMaxMessagesPerCall = 64;
   int handled = 0;
-  while (lcm_->handleTimeout(0) > 0) ++handled;
+  while (handled < kMaxMessagesPerCall && lcm_->handleTimeout(0) > 0) ++handled;
   return handled;
 }
 

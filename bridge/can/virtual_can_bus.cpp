@@ -74,6 +74,9 @@ struct VirtualCanBus::Impl {
 
   void arbitrate(int64_t start_ns) {
     arbitration_scheduled = false;
+    // A frame queued from a receive handler schedules an arbitration, and finish() then
+    // arbitrates directly: the later of the two must not put a second frame on the wire.
+    if (busy) return;
     Port* winner = nullptr;
     for (Port* port : ports) {
       if (port->queue.empty()) continue;

@@ -120,6 +120,31 @@ TEST_F(VirtualBusTest, ABusyBusMakesAnUrgentFrameWaitButItWinsTheNextArbitration
   EXPECT_GT(bus.stats().max_queue_delay_ns, 100'000) << "the second slow frame waited two frames";
 }
 
+// A port that answers from inside its receive handler queues while the bus is idle for an
+// instant: the answer's frames still go out one at a time, in order.
+TEST_F(VirtualBusTest, FramesQueuedFromAReceiveHandlerKeepTheirOrder) {
+  VirtualCanBus bus(scheduler_, {});
+  auto asker = bus.attach("asker");
+  auto answerer = bus.attach("answerer");
+  auto monitor = bus.attach("monitor");
+  std::vector<Received> seen;
+  listen(*monitor, seen);
+  asker->start(scheduler_, [](const CanFrame&, int64_t) {});
+  answerer->start(scheduler_, [&](const CanFrame&, int64_t) {
+    answerer->send(frame(0x10000005, 8, 0x01));
+    answerer->send(frame(0x10000005, 1, 0x02));
+  });
+  scheduler_.schedule_at(0, [&] { asker->send(frame(0x10000004, 8)); });
+  scheduler_.run_until(10'000);
+  ASSERT_EQ(seen.size(), 3u);
+  EXPECT_EQ(seen[1].frame.data[0], 0x01);
+  EXPECT_EQ(seen[2].frame.data[0], 0x02);
+  EXPECT_GE(seen[2].time_us - seen[1].time_us, bus.frame_time_ns(seen[2].frame) / 1000)
+      << "the second frame waited for the first to leave the wire";
+  EXPECT_EQ(bus.stats().busy_ns, bus.frame_time_ns(seen[0].frame) + bus.frame_time_ns(seen[1].frame) +
+                                     bus.frame_time_ns(seen[2].frame));
+}
+
 TEST_F(VirtualBusTest, BusLoadFollowsTheOfferedTraffic) {
   for (double bit_rate : {1e6, 250e3}) {
     common::VirtualScheduler scheduler;

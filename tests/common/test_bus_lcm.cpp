@@ -142,6 +142,24 @@ TEST(LcmBusMemq, FifoOnAChannelAndExactChannelNames) {
   EXPECT_EQ(dotted, (std::vector<int64_t>{200}));
 }
 
+// A steady stream must not keep one handle_ready() call forever: it hands back after a
+// bounded batch so the executor's timers run, and the rest waits for the next call.
+TEST(LcmBusMemq, HandleReadyDispatchesABoundedBatch) {
+  LcmBus bus("memq://");
+  int received = 0;
+  bus.subscribe<a3lcm::link_message_t>("A3_LINK", [&](const a3lcm::link_message_t&, int64_t) { ++received; });
+  for (int64_t id = 1; id <= 200; ++id) bus.publish("A3_LINK", test::make_link_message(id, "x"));
+  const int first = bus.handle_ready();
+  EXPECT_GT(first, 0);
+  EXPECT_LT(first, 200);
+  int calls = 1;
+  while (received < 200 && calls < 100) {
+    bus.handle_ready();
+    ++calls;
+  }
+  EXPECT_EQ(received, 200);
+}
+
 TEST(LcmBusMemq, UnsubscribeStopsDelivery) {
   LcmBus bus("memq://");
   int a = 0, b = 0;
