@@ -79,6 +79,15 @@ struct Reporter {
   }
 };
 
+nlohmann::json direction_json(const linkemu::DirectionStats& d) {
+  nlohmann::json dropped = nlohmann::json::object();
+  for (std::size_t r = 0; r < linkemu::kDropReasonCount; ++r) {
+    dropped[linkemu::to_string(static_cast<linkemu::DropReason>(r))] = d.dropped[r];
+  }
+  return {{"received", d.received}, {"delivered", d.delivered}, {"lost", d.lost}, {"dropped", dropped},
+          {"bytes_delivered", d.bytes_delivered}};
+}
+
 struct Nodes {
   std::unique_ptr<dynamics::DynamicsNode> dynamics;
   std::unique_ptr<bridge::BridgeNode> bridge;
@@ -113,6 +122,8 @@ struct Nodes {
                              {"fc_refusals", t.fc_refusals}, {"timeouts", t.timeouts},
                              {"routes_completed", t.routes_completed}, {"images_captured", t.images_captured},
                              {"image_bytes_downlinked", t.image_bytes_downlinked}}},
+            {"link", {{"up", direction_json(link->stats().up)}, {"down", direction_json(link->stats().down)},
+                      {"slice_switch_requests", link->stats().slice_switch_requests}}},
             {"lcm_log_events", log ? log->events() : 0}};
   }
 };
