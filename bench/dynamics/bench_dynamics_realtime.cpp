@@ -8,6 +8,8 @@
 // last one.
 #include <CLI/CLI.hpp>
 
+#include <pthread.h>
+#include <sched.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -142,6 +144,7 @@ int main(int argc, char** argv) {
   std::string integrator = "cvode";
   std::string url = "udpm://239.255.76.67:7691?ttl=0";
   std::string dump;
+  int rt_priority = 0;
   app.add_option("--duration-s", duration_s, "wall seconds measured, after a 1 s warm-up (default 60)")
       ->check(CLI::PositiveNumber);
   app.add_option("--rtf", rtf, "real-time factor (default 1)")->check(CLI::PositiveNumber);
@@ -149,6 +152,9 @@ int main(int argc, char** argv) {
   app.add_option("--integrator", integrator, "cvode (default) or ode")->check(CLI::IsMember({"cvode", "ode"}));
   app.add_option("--lcm-url", url, "LCM URL (default: a port of its own, away from other runs)");
   app.add_option("--dump", dump, "write each step's lateness (us) and each state's arrival lateness to this CSV");
+  app.add_option("--rt-priority", rt_priority,
+                 "run the node threads under SCHED_FIFO at this priority (1-99; default 0: normal)")
+      ->check(CLI::Range(0, 99));
   CLI11_PARSE(app, argc, argv);
 
   const double warmup_s = 1.0;
@@ -166,6 +172,16 @@ int main(int argc, char** argv) {
 
   std::vector<pid_t> burner_pids;
   for (int i = 0; i < burners; ++i) burner_pids.push_back(spawn_burner());
+  if (rt_priority > 0) {
+    // Threads started from here on inherit the policy; the burners keep the normal one.
+    sched_param param{};
+    param.sched_priority = rt_priority;
+    if (pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) != 0) {
+      std::fprintf(stderr, "bench_dynamics_realtime: cannot set SCHED_FIFO (needs root or CAP_SYS_NICE)\n");
+      for (pid_t pid : burner_pids) kill(pid, SIGKILL);
+      return 1;
+    }
+  }
   const std::string load_before = load_average();
   const std::string realtime_before = other_realtime_threads();
   arrivals_thread.start();
@@ -217,9 +233,10 @@ int main(int argc, char** argv) {
 
   std::printf("dynamics node in real time: %s integrator, %.0f Hz, real-time factor %g, patrol flight under its\n"
               "controller (own thread), LCM %s; %d CPU-burning child process(es); %.0f s measured after %.0f s\n"
-              "warm-up; load average before %s, after %s; %u cores\n",
+              "warm-up; load average before %s, after %s; %u cores; node threads %s\n",
               integrator.c_str(), config.publish_rate_hz, rtf, url.c_str(), burners, duration_s, warmup_s,
-              load_before.c_str(), load_after.c_str(), std::thread::hardware_concurrency());
+              load_before.c_str(), load_after.c_str(), std::thread::hardware_concurrency(),
+              rt_priority > 0 ? ("SCHED_FIFO " + std::to_string(rt_priority)).c_str() : "SCHED_OTHER");
   std::printf("other processes' SCHED_FIFO/RR threads (they preempt this run): before %s; after %s\n",
               realtime_before.c_str(), realtime_after.c_str());
   std::printf("%-36s %9s %9s %9s %8s %9s\n", "lateness against the schedule", "p50 us", "p99 us", "max us", "n", "> 1 ms");
