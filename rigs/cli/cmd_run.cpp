@@ -115,6 +115,8 @@ A3_REGISTER_COMMAND("10-run", [](CLI::App& app) {
                   "exp:MEAN, or model:<name> (a model of the paper)");
   cmd->add_option("--runtime", args->runtime, "real (default: the wall clock) or virtual (as fast as possible)")
       ->check(CLI::IsMember({"real", "virtual"}));
+  cmd->add_option("--slice", o.slice, "start on this 6G slice instead of the scenario's (eMBB, URLLC or mMTC)")
+      ->check(CLI::IsMember({"eMBB", "URLLC", "mMTC"}));
   cmd->add_option("--seed", o.seed, "seed of every random stream (default 42)");
   cmd->add_option("--out", args->out, "output folder (default out/run)");
   cmd->add_option("--rtf", o.real_time_factor, "real time: simulated seconds per wall second (default 1)")

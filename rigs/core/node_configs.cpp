@@ -53,7 +53,7 @@ RigConfigs make_rig_configs(const Scenario& s, const RunOptions& o) {
 
   // Link emulator.
   c.link.seed = o.seed;
-  c.link.initial_slice = linkemu::parse_slice(s.network.initial_slice);
+  c.link.initial_slice = linkemu::parse_slice(o.slice.empty() ? s.network.initial_slice : o.slice);
   if (!s.network.trace.empty()) c.link.trace = trace_for(s.network, o.shared_dir);
   for (const auto& w : s.network.degradations) {
     c.link.forced_degradations.push_back({static_cast<int64_t>(w.start_s * 1e6),

@@ -13,6 +13,7 @@ struct RunOptions {
   std::string scenario = "survey-field";  // built-in name, file, or alphabench:<path>
   std::string agent = "scripted";          // scripted | replay:<episode file> | llm
   std::string think_time = "0";            // see agent/conversation/think_time.hpp
+  std::string slice;                       // overrides the scenario's initial slice (eMBB, URLLC, mMTC); empty: keep
   Runtime runtime = Runtime::kReal;
   uint64_t seed = 42;
   std::filesystem::path out_dir = "out/run";
