@@ -19,6 +19,9 @@ for arg in "$@"; do
   esac
 done
 cmake --build "$build" --target bench_dynamics_virtual bench_dynamics_realtime bench_dynamics_flight a3rig >/dev/null
+# Debian's Python, where python3-scipy installs (a python3 earlier on PATH may lack it).
+python=/usr/bin/python3
+[ -x "$python" ] || python=python3
 sim_s=600; rt_s=60; py_s=60
 if [ "$quick" = 1 ]; then sim_s=60; rt_s=10; py_s=10; fi
 csv=$(mktemp --suffix=.csv)
@@ -32,7 +35,7 @@ cvode_cpu_rtf=$(awk '/^cvode calm / {sub("x", "", $4); print $4}' "$log")
 
 echo
 echo "== 2. the same equations in Python (SciPy solve_ivp), same flight"
-python3 "$here/scipy_model.py" "$csv" --duration-s "$py_s" --cpp-rtf "$cvode_rtf" --cpp-cpu-rtf "$cvode_cpu_rtf"
+"$python" "$here/scipy_model.py" "$csv" --duration-s "$py_s" --cpp-rtf "$cvode_rtf" --cpp-cpu-rtf "$cvode_cpu_rtf"
 
 echo
 echo "== 3. real time at factor 1 with a CPU-burning process"
