@@ -42,6 +42,8 @@ struct AgentDecision {
   double think_time_s = 0.0;
   nlohmann::json usage = nlohmann::json::object();  // prompt/completion/total tokens
   int attempts = 1;
+  // One entry per attempt (an LLM agent's retries): outcome, problems, usage, wall time.
+  nlohmann::json attempt_log = nlohmann::json::array();
   std::string error;  // a failed decision (after all attempts): the turn has no actions
 };
 

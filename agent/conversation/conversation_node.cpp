@@ -197,6 +197,7 @@ void ConversationNode::decided(AgentDecision d, double measured_s) {
   current_.text = d.error.empty() ? d.text : "agent error: " + d.error;
   current_.usage = d.usage;
   current_.attempts = d.attempts;
+  current_.attempt_log = d.attempt_log;
   nlohmann::json actions = d.actions.is_array() ? d.actions : nlohmann::json::array();
   if (!d.error.empty()) common::log_warn("conversation", "turn " + std::to_string(current_.number) + ": " + d.error);
   executor_->schedule_after(static_cast<int64_t>(wait_s * 1e6), [this, actions] {
@@ -320,6 +321,7 @@ void ConversationNode::publish_turn(const Turn& t) {
   nlohmann::json detail = t.to_json();
   detail["_rig"] = {{"started_s", t.started_s}, {"decided_s", t.decided_s}, {"finished_s", t.finished_s},
                     {"think_time_s", t.think_time_s}, {"usage", t.usage}, {"attempts", t.attempts}, {"text", t.text}};
+  if (t.attempt_log.is_array() && !t.attempt_log.empty()) detail["_rig"]["attempt_log"] = t.attempt_log;
   a3lcm::episode_event_t ev;
   ev.utime_us = executor_->clock().now_us();
   ev.turn = t.number;

@@ -23,6 +23,7 @@ struct Turn {
   double think_time_s = 0.0;    // latency charged to the turn (measured or declared)
   nlohmann::json usage = nlohmann::json::object();  // tokens, for LLM agents
   int attempts = 1;
+  nlohmann::json attempt_log = nlohmann::json::array();  // AgentDecision::attempt_log
   std::string text;             // what the speaker said, in words
 
   // The α³-Bench turn object.
