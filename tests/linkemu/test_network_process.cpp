@@ -4,6 +4,7 @@
 // and t; the state is piecewise constant between the announced change times.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <vector>
@@ -156,6 +157,40 @@ TEST(NetworkProcess, SharedOverrideMakesEverySliceDegradedMoreOften) {
   const int steps = 200000;
   for (int i = 0; i < steps; ++i) degraded += process.state_at(static_cast<int64_t>(i) * kSecond).degraded;
   EXPECT_NEAR(static_cast<double>(degraded) / steps, 0.5, 0.05);
+}
+
+
+// A scenario's scripted degradation: inside the window every draw is from the degraded regime
+// (hard), the state changes exactly at the window's edges, and outside it the normal-regime
+// start is kept.
+TEST(NetworkProcess, ForcedWindowsAreDegradedExactlyWhileTheyLast) {
+  const SliceProfiles& profiles = default_slice_profiles();
+  const int64_t start = 60 * kSecond, end = 90 * kSecond;
+  SliceStateProcess process(profiles.at(Slice::kUrllc), profiles.timing, common::RngStreams(8), StartRegime::kNormal,
+                            0, {{start, end}});
+  SliceStateProcess unforced(profiles.at(Slice::kUrllc), profiles.timing, common::RngStreams(8), StartRegime::kNormal,
+                             0);
+  EXPECT_FALSE(process.state_at(0).degraded);
+  int64_t t = 0;
+  bool saw_change_at_start = false, saw_change_at_end = false;
+  while (t < 150 * kSecond) {
+    const NetworkState s = process.state_at(t);
+    if (t >= start && t < end) {
+      ASSERT_TRUE(s.degraded) << "t = " << t;
+      ASSERT_TRUE(is_hard(s)) << "t = " << t;
+    }
+    const int64_t change = process.next_change_us();
+    ASSERT_GT(change, t);
+    saw_change_at_start |= change == start;
+    saw_change_at_end |= change == end;
+    t = std::min(change, t + kSecond);
+  }
+  EXPECT_TRUE(saw_change_at_start) << "the state is redrawn when the window opens";
+  EXPECT_TRUE(saw_change_at_end) << "and when it closes";
+  // Without the window the same seed is (almost always) normal at those times.
+  int unforced_degraded = 0;
+  for (int64_t u = start; u < end; u += kSecond) unforced_degraded += unforced.state_at(u).degraded;
+  EXPECT_EQ(unforced_degraded, 0) << "seed 8 has no degradation of its own there";
 }
 
 }  // namespace
