@@ -44,7 +44,8 @@ inline int& command_exit_status() {
 #define A3_CONCAT_INNER(a, b) a##b
 #define A3_CONCAT(a, b) A3_CONCAT_INNER(a, b)
 // A3_REGISTER_COMMAND("20-score", [](CLI::App& app) { ... });
-#define A3_REGISTER_COMMAND(sort_key, registrar)                             \
+// Variadic, so that commas inside the lambda (braced initialisers) need no extra parentheses.
+#define A3_REGISTER_COMMAND(sort_key, ...)                                      \
   static const ::a3::rigs::CommandRegistration A3_CONCAT(a3_command_, __LINE__) { \
-    sort_key, registrar                                                      \
+    sort_key, __VA_ARGS__                                                       \
   }
