@@ -1,0 +1,409 @@
+// The OpenAI-compatible chat-completions client: libcurl easy handle reused across calls
+// (keep-alive), retries with backoff, response reading, key hygiene.
+#include "agent/llm/llm_client.hpp"
+
+#include <curl/curl.h>
+#include <pthread.h>
+#include <signal.h>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+#include "agent/llm/http_chat_completion.hpp"
+#include "agent/llm/http_retry.hpp"
+
+namespace a3::agent::llm {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string env(const char* name) {
+  const char* v = std::getenv(name);
+  return v == nullptr ? std::string() : std::string(v);
+}
+
+std::string trim(const std::string& s) {
+  std::size_t b = 0, e = s.size();
+  while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
+  while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
+  return s.substr(b, e - b);
+}
+
+std::string lower(std::string s) {
+  for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+bool starts_with(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
+
+std::string read_key_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::invalid_argument("A3_LLM_API_KEY_FILE: cannot read " + path);
+  std::string line;
+  std::getline(in, line);
+  line = trim(line);
+  if (line.empty()) throw std::invalid_argument("A3_LLM_API_KEY_FILE: the first line of " + path + " is empty");
+  return line;
+}
+
+void check_key(const std::string& key, const char* source) {
+  for (char c : key) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f) {
+      throw std::invalid_argument(std::string(source) + ": the API key contains a control character or line break");
+    }
+  }
+}
+
+std::string size_text(std::size_t bytes) {
+  if (bytes >= (1u << 20) && bytes % (1u << 20) == 0) return std::to_string(bytes >> 20) + " MiB";
+  return std::to_string(bytes) + " bytes";
+}
+
+// libcurl is told not to touch signals (CURLOPT_NOSIGNAL, needed with threads), so a write to a
+// connection the peer closed could raise SIGPIPE and end the program. The signal is blocked in
+// this thread for the transfer and a pending one is discarded after it.
+class SigpipeBlock {
+ public:
+  SigpipeBlock() {
+    sigemptyset(&pipe_);
+    sigaddset(&pipe_, SIGPIPE);
+    pthread_sigmask(SIG_BLOCK, &pipe_, &old_);
+  }
+  ~SigpipeBlock() {
+    sigset_t pending;
+    sigemptyset(&pending);
+    if (sigpending(&pending) == 0 && sigismember(&pending, SIGPIPE) == 1 && sigismember(&old_, SIGPIPE) == 0) {
+      const timespec zero{0, 0};
+      sigtimedwait(&pipe_, nullptr, &zero);
+    }
+    pthread_sigmask(SIG_SETMASK, &old_, nullptr);
+  }
+  SigpipeBlock(const SigpipeBlock&) = delete;
+  SigpipeBlock& operator=(const SigpipeBlock&) = delete;
+
+ private:
+  sigset_t pipe_;
+  sigset_t old_;
+};
+
+void init_curl_once() {
+  static std::once_flag once;
+  std::call_once(once, [] { curl_global_init(CURL_GLOBAL_DEFAULT); });
+}
+
+// What one HTTP exchange produced.
+struct Exchange {
+  CURLcode code = CURLE_OK;
+  std::string curl_error;
+  long http_status = 0;
+  std::string body;
+  std::string retry_after;
+  bool body_too_large = false;
+  std::size_t max_bytes = 0;
+};
+
+std::size_t on_body(char* data, std::size_t size, std::size_t count, void* user) {
+  auto* ex = static_cast<Exchange*>(user);
+  const std::size_t n = size * count;
+  if (ex->body.size() + n > ex->max_bytes) {
+    ex->body_too_large = true;
+    return 0;  // makes curl stop with CURLE_WRITE_ERROR
+  }
+  ex->body.append(data, n);
+  return n;
+}
+
+std::size_t on_header(char* data, std::size_t size, std::size_t count, void* user) {
+  auto* ex = static_cast<Exchange*>(user);
+  const std::size_t n = size * count;
+  const std::string line(data, n);
+  if (starts_with(line, "HTTP/")) ex->retry_after.clear();  // a new response (after 100 Continue, redirects)
+  const auto colon = line.find(':');
+  if (colon != std::string::npos && lower(line.substr(0, colon)) == "retry-after") {
+    ex->retry_after = trim(line.substr(colon + 1));
+  }
+  return n;
+}
+
+std::string describe_curl_error(const Exchange& ex, const LlmEndpoint& e) {
+  switch (ex.code) {
+    case CURLE_OPERATION_TIMEDOUT:
+      return "timed out (connect timeout " + std::to_string(e.connect_timeout_s) + " s, total timeout " +
+             std::to_string(e.total_timeout_s) + " s): " + ex.curl_error;
+    case CURLE_COULDNT_CONNECT:
+      return "connection failed: " + ex.curl_error;
+    default:
+      return std::string(curl_easy_strerror(ex.code)) + (ex.curl_error.empty() ? "" : ": " + ex.curl_error);
+  }
+}
+
+}  // namespace
+
+// ---- usage ----
+
+LlmUsage& LlmUsage::operator+=(const LlmUsage& other) {
+  prompt_tokens += other.prompt_tokens;
+  completion_tokens += other.completion_tokens;
+  total_tokens += other.total_tokens;
+  if (other.cost_usd) cost_usd = cost_usd.value_or(0.0) + *other.cost_usd;
+  if (!raw.is_object()) raw = nlohmann::json::object();
+  add_usage_fields(raw, other.raw);
+  raw["prompt_tokens"] = prompt_tokens;
+  raw["completion_tokens"] = completion_tokens;
+  raw["total_tokens"] = total_tokens;
+  if (cost_usd) raw["cost"] = *cost_usd;
+  return *this;
+}
+
+nlohmann::json LlmUsage::to_json() const {
+  nlohmann::json out = raw.is_object() ? raw : nlohmann::json::object();
+  out["prompt_tokens"] = prompt_tokens;
+  out["completion_tokens"] = completion_tokens;
+  out["total_tokens"] = total_tokens;
+  if (cost_usd) out["cost"] = *cost_usd;
+  return out;
+}
+
+// ---- endpoint ----
+
+std::string redact(std::string text, const std::string& secret) {
+  if (secret.empty()) return text;
+  static const std::string kMark = "[redacted]";
+  for (std::size_t pos = text.find(secret); pos != std::string::npos; pos = text.find(secret, pos + kMark.size())) {
+    text.replace(pos, secret.size(), kMark);
+  }
+  return text;
+}
+
+std::string provider_from_base_url(const std::string& base_url) {
+  std::string rest = base_url;
+  if (const auto scheme = rest.find("://"); scheme != std::string::npos) rest = rest.substr(scheme + 3);
+  rest = rest.substr(0, rest.find_first_of("/?#"));
+  if (const auto at = rest.rfind('@'); at != std::string::npos) rest = rest.substr(at + 1);
+  std::string host;
+  if (!rest.empty() && rest[0] == '[') {
+    host = rest.substr(1, rest.find(']') == std::string::npos ? std::string::npos : rest.find(']') - 1);
+  } else {
+    host = rest.substr(0, rest.find(':'));
+  }
+  host = lower(host);
+  auto is_or_under = [&](const std::string& domain) {
+    return host == domain || (host.size() > domain.size() && host.compare(host.size() - domain.size() - 1,
+                                                                          std::string::npos, "." + domain) == 0);
+  };
+  if (is_or_under("api.openai.com")) return "openai";
+  if (is_or_under("openrouter.ai")) return "openrouter";
+  if (is_or_under("api.anthropic.com")) return "anthropic";
+  if (is_or_under("generativelanguage.googleapis.com")) return "google";
+  if (host == "localhost" || host == "::1" || starts_with(host, "127.")) return "local";
+  return host;
+}
+
+LlmEndpoint endpoint_from_environment(const std::string& base_url_flag, const std::string& model_flag) {
+  LlmEndpoint e;
+  e.base_url = !base_url_flag.empty() ? base_url_flag : env("A3_LLM_BASE_URL");
+  if (e.base_url.empty()) {
+    throw std::invalid_argument(
+        "no LLM endpoint: set A3_LLM_BASE_URL or --llm-base-url (e.g. https://api.openai.com/v1, "
+        "https://openrouter.ai/api/v1, http://localhost:8000/v1 for vLLM)");
+  }
+  while (e.base_url.size() > 1 && e.base_url.back() == '/') e.base_url.pop_back();
+  if (!starts_with(lower(e.base_url), "http://") && !starts_with(lower(e.base_url), "https://")) {
+    throw std::invalid_argument("LLM base URL '" + e.base_url + "' must start with http:// or https://");
+  }
+  e.model = !model_flag.empty() ? model_flag : env("A3_LLM_MODEL");
+  if (e.model.empty()) throw std::invalid_argument("no LLM model: set A3_LLM_MODEL or --llm-model (e.g. gpt-4.1-mini)");
+  e.provider = env("A3_LLM_PROVIDER");
+  if (e.provider.empty()) e.provider = provider_from_base_url(e.base_url);
+
+  if (const std::string key = trim(env("A3_LLM_API_KEY")); !key.empty()) {
+    check_key(key, "A3_LLM_API_KEY");
+    e.api_key = key;
+  } else if (const std::string file = env("A3_LLM_API_KEY_FILE"); !file.empty()) {
+    e.api_key = read_key_file(file);
+    check_key(e.api_key, "A3_LLM_API_KEY_FILE");
+  } else if (const std::string openai = trim(env("OPENAI_API_KEY")); !openai.empty()) {
+    check_key(openai, "OPENAI_API_KEY");
+    e.api_key = openai;
+  }
+  return e;
+}
+
+// ---- client ----
+
+LlmClient::LlmClient(LlmEndpoint endpoint) : endpoint_(std::move(endpoint)) {
+  while (endpoint_.base_url.size() > 1 && endpoint_.base_url.back() == '/') endpoint_.base_url.pop_back();
+  const std::string url = lower(endpoint_.base_url);
+  if (!starts_with(url, "http://") && !starts_with(url, "https://")) {
+    throw std::invalid_argument("LLM base URL '" + endpoint_.base_url + "' must start with http:// or https://");
+  }
+  if (endpoint_.model.empty()) throw std::invalid_argument("LLM endpoint " + endpoint_.base_url + ": no model");
+  if (!(endpoint_.connect_timeout_s > 0.0) || !(endpoint_.total_timeout_s > 0.0)) {
+    throw std::invalid_argument("LLM endpoint: connect and total timeouts must be > 0 s");
+  }
+  if (endpoint_.max_retries < 0) throw std::invalid_argument("LLM endpoint: max_retries must be >= 0");
+  if (endpoint_.backoff_initial_s < 0.0 || endpoint_.backoff_max_s < 0.0) {
+    throw std::invalid_argument("LLM endpoint: backoff times must be >= 0 s");
+  }
+  if (endpoint_.max_response_bytes == 0) throw std::invalid_argument("LLM endpoint: max_response_bytes must be > 0");
+  check_key(endpoint_.api_key, "LLM endpoint");
+  if (endpoint_.provider.empty()) endpoint_.provider = provider_from_base_url(endpoint_.base_url);
+  sleep_ = [](double s) { std::this_thread::sleep_for(std::chrono::duration<double>(s)); };
+  init_curl_once();
+  curl_ = curl_easy_init();
+  if (curl_ == nullptr) throw std::runtime_error("libcurl: curl_easy_init failed");
+}
+
+LlmClient::~LlmClient() {
+  if (curl_ != nullptr) curl_easy_cleanup(static_cast<CURL*>(curl_));
+}
+
+void LlmClient::set_sleep_for_tests(std::function<void(double)> sleep) { sleep_ = std::move(sleep); }
+
+LlmCallResult LlmClient::chat(const std::vector<ChatMessage>& messages) {
+  LlmCallResult result;
+  const std::string url = endpoint_.base_url + "/chat/completions";
+  const std::string& key = endpoint_.api_key;
+  CURL* curl = static_cast<CURL*>(curl_);
+  const auto start = Clock::now();
+
+  curl_slist* headers = nullptr;
+  headers = curl_slist_append(headers, "Content-Type: application/json");
+  headers = curl_slist_append(headers, "Accept: application/json");
+  headers = curl_slist_append(headers, "Expect:");
+  if (!key.empty()) headers = curl_slist_append(headers, ("Authorization: Bearer " + key).c_str());
+
+  int retries_made = 0;
+  bool format_retry_used = false;
+  std::string final_error;
+  for (;;) {
+    const bool with_format = endpoint_.json_output && !response_format_rejected_;
+    std::string request_body;
+    try {
+      request_body = chat_request_body(endpoint_, messages, with_format).dump();
+    } catch (const nlohmann::json::exception& e) {  // e.g. a message that is not UTF-8
+      final_error = std::string("cannot encode the request: ") + e.what();
+      break;
+    }
+
+    Exchange ex;
+    ex.max_bytes = endpoint_.max_response_bytes;
+    char curl_error[CURL_ERROR_SIZE] = {0};
+    curl_easy_reset(curl);  // options only: the connection cache stays (keep-alive)
+    curl_easy_setopt(curl, CURLOPT_URL, url.c_str());
+    curl_easy_setopt(curl, CURLOPT_POST, 1L);
+    curl_easy_setopt(curl, CURLOPT_POSTFIELDS, request_body.data());
+    curl_easy_setopt(curl, CURLOPT_POSTFIELDSIZE_LARGE, static_cast<curl_off_t>(request_body.size()));
+    curl_easy_setopt(curl, CURLOPT_HTTPHEADER, headers);
+    curl_easy_setopt(curl, CURLOPT_USERAGENT, "a3rig-llm-client");
+    curl_easy_setopt(curl, CURLOPT_ACCEPT_ENCODING, "");
+    curl_easy_setopt(curl, CURLOPT_NOSIGNAL, 1L);
+    curl_easy_setopt(curl, CURLOPT_TCP_KEEPALIVE, 1L);
+    curl_easy_setopt(curl, CURLOPT_CONNECTTIMEOUT_MS, static_cast<long>(endpoint_.connect_timeout_s * 1000.0));
+    curl_easy_setopt(curl, CURLOPT_TIMEOUT_MS, static_cast<long>(endpoint_.total_timeout_s * 1000.0));
+    curl_easy_setopt(curl, CURLOPT_MAXFILESIZE_LARGE, static_cast<curl_off_t>(endpoint_.max_response_bytes));
+    curl_easy_setopt(curl, CURLOPT_WRITEFUNCTION, on_body);
+    curl_easy_setopt(curl, CURLOPT_WRITEDATA, &ex);
+    curl_easy_setopt(curl, CURLOPT_HEADERFUNCTION, on_header);
+    curl_easy_setopt(curl, CURLOPT_HEADERDATA, &ex);
+    curl_easy_setopt(curl, CURLOPT_ERRORBUFFER, curl_error);
+
+    const auto attempt_start = Clock::now();
+    {
+      const SigpipeBlock no_sigpipe;
+      ex.code = curl_easy_perform(curl);
+    }
+    ex.curl_error = curl_error;
+    curl_easy_getinfo(curl, CURLINFO_RESPONSE_CODE, &ex.http_status);
+    curl_easy_setopt(curl, CURLOPT_ERRORBUFFER, nullptr);
+    // Before anything is cut into an excerpt (which could cut a key in two) or returned.
+    ex.body = redact(std::move(ex.body), key);
+
+    LlmAttempt attempt;
+    attempt.duration_s = seconds_since(attempt_start);
+    attempt.http_status = ex.code == CURLE_OK ? static_cast<int>(ex.http_status) : 0;
+    result.http_attempts += 1;
+    if (ex.code == CURLE_OK) result.http_status = static_cast<int>(ex.http_status);
+
+    bool retryable = false;
+    if (ex.body_too_large || ex.code == CURLE_FILESIZE_EXCEEDED) {
+      attempt.error = "response from " + url + " is larger than " + size_text(endpoint_.max_response_bytes) +
+                      " (max_response_bytes); not read";
+    } else if (ex.code != CURLE_OK) {
+      attempt.error = describe_curl_error(ex, endpoint_);
+      retryable = is_retryable_curl_error(ex.code);
+    } else if (ex.http_status >= 200 && ex.http_status < 300) {
+      ChatResponse parsed;
+      std::string parse_error;
+      if (parse_chat_response(ex.body, url, parsed, parse_error)) {
+        result.ok = true;
+        result.content = std::move(parsed.content);
+        result.finish_reason = std::move(parsed.finish_reason);
+        result.model = std::move(parsed.model);
+        result.usage = std::move(parsed.usage);
+      } else {
+        attempt.error = parse_error;
+      }
+    } else {
+      const std::string text = error_text_from_body(ex.body);
+      attempt.error = "HTTP " + std::to_string(ex.http_status) + ": " + text;
+      const bool format_rejected = with_format && (ex.http_status == 400 || ex.http_status == 422) &&
+                                   lower(ex.body).find("response_format") != std::string::npos;
+      if (format_rejected && !format_retry_used) {
+        // The provider does not take response_format: ask again without it, now and from now on.
+        response_format_rejected_ = true;
+        format_retry_used = true;
+        attempt.error += " (retrying without response_format)";
+        result.attempts.push_back(attempt);
+        result.attempts.back().error = redact(result.attempts.back().error, key);
+        continue;
+      }
+      retryable = is_retryable_http_status(static_cast<int>(ex.http_status));
+    }
+    attempt.error = redact(attempt.error, key);
+    const bool retry = retryable && retries_made < endpoint_.max_retries;
+    if (retry) {
+      attempt.backoff_s = backoff_delay_s(retries_made, endpoint_.backoff_initial_s, endpoint_.backoff_max_s,
+                                          parse_retry_after_s(ex.retry_after, std::time(nullptr)));
+    }
+    result.attempts.push_back(attempt);
+    if (result.ok) break;
+    if (!retry) {
+      final_error = attempt.error;
+      break;
+    }
+    ++retries_made;
+    if (attempt.backoff_s > 0.0) sleep_(attempt.backoff_s);
+  }
+  curl_slist_free_all(headers);
+
+  result.wall_time_s = seconds_since(start);
+  if (!result.ok) {
+    std::string error;
+    if (result.attempts.size() <= 1) {
+      error = "POST " + url + ": " + final_error;
+    } else {
+      error = "POST " + url + " failed after " + std::to_string(result.attempts.size()) + " attempts:";
+      for (std::size_t i = 0; i < result.attempts.size(); ++i) {
+        error += " #" + std::to_string(i + 1) + " " +
+                 (result.attempts[i].error.empty() ? std::string("ok") : result.attempts[i].error) + ";";
+      }
+      error.pop_back();
+    }
+    result.error = redact(error, key);
+  }
+  return result;
+}
+
+}  // namespace a3::agent::llm

@@ -1,0 +1,128 @@
+// The OpenAI-compatible HTTP server behind `a3rig serve-model` (cpp-httplib): POST
+// /v1/chat/completions answered by a ModelResponder after a latency drawn from a LatencyModel,
+// and GET /v1/models. Requests are validated (400 with an OpenAI-style error naming what is
+// wrong), optionally authenticated (401), and may be failed on purpose (fault injection for
+// testing clients: a fail rate, the first N requests, a concurrency limit), with Retry-After.
+// Requests are handled concurrently by a pool of worker threads; the responder is called under a
+// lock (responders need not be thread-safe), the latency waits are not.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "agent/model_server/latency_model.hpp"
+#include "agent/model_server/model_responder.hpp"
+#include "common/rng.hpp"
+
+namespace httplib {
+class Server;
+struct Request;
+struct Response;
+}  // namespace httplib
+
+namespace a3::agent::model_server {
+
+struct ModelServerOptions {
+  std::string host = "127.0.0.1";
+  int port = 8088;                   // 0: any free port (ModelServer::port() says which)
+  std::string latency = "recorded";  // see latency_model.hpp
+  double time_scale = 1.0;           // multiplies every latency
+  uint64_t seed = 42;                // latency draws and the fail-rate's draws
+  double fail_rate = 0.0;            // probability that a chat request fails on purpose
+  int fail_first = 0;                // the first N chat requests fail on purpose
+  int fail_status = 429;             // status of those failures: 429, 500, 502, 503 or 504
+  double retry_after_s = 1.0;        // Retry-After sent with them and with busy refusals (0: none)
+  int max_concurrency = 0;           // chat requests answered at once; beyond: 429 (0: no limit)
+  std::string require_key_env;       // an environment variable holding the key clients must send
+  std::vector<std::string> model_ids;  // GET /v1/models lists these (default: the responder's name)
+  int threads = 16;                  // worker threads: connections served at once
+  bool quiet = false;                // no line per request
+  std::size_t max_request_bytes = 32u << 20;
+};
+
+struct ModelServerStats {
+  uint64_t requests = 0;           // every HTTP request
+  uint64_t answered = 0;           // chat completions answered with 200
+  uint64_t bad_requests = 0;       // 400, 404, 413
+  uint64_t unauthorized = 0;       // 401
+  uint64_t injected_failures = 0;  // --fail-rate / --fail-first
+  uint64_t refused_busy = 0;       // --max-concurrency
+  uint64_t responder_errors = 0;   // 500: the responder failed
+  double latency_applied_s = 0.0;  // sum over answered requests
+  int64_t prompt_tokens = 0;
+  int64_t completion_tokens = 0;
+};
+
+// Tokens estimated from characters, ~4 characters per token (what OpenAI's tokenizers average on
+// English text), rounded up: for replies whose responder does not count tokens.
+int64_t estimate_tokens(std::size_t characters);
+// Characters (UTF-8 code points) of every message's content in a chat-completions request.
+std::size_t prompt_characters(const nlohmann::json& request);
+// Checks a chat-completions request body; returns "" when usable, else what is wrong
+// ("'messages' must be a non-empty array", "messages[1].role must be one of ...").
+std::string chat_request_problem(const nlohmann::json& request);
+
+class ModelServer {
+ public:
+  using LogLine = std::function<void(const std::string&)>;
+
+  // Throws std::invalid_argument for bad options (latency spec, fail status, rates, a key
+  // variable that is not set). `log` gets the per-request lines (default: stderr).
+  ModelServer(std::unique_ptr<ModelResponder> responder, ModelServerOptions options, LogLine log = {});
+  ~ModelServer();
+  ModelServer(const ModelServer&) = delete;
+  ModelServer& operator=(const ModelServer&) = delete;
+
+  // Binds and serves from a thread of its own. Throws std::runtime_error when the address
+  // cannot be bound.
+  void start();
+  // Stops listening; requests waiting out their latency are answered 503 at once. Idempotent.
+  void stop();
+
+  int port() const { return port_; }
+  std::string base_url() const;  // http://HOST:PORT/v1
+  ModelServerStats stats() const;
+  const LatencyModel& latency_model() const { return latency_; }
+  const std::string& responder_name() const { return responder_name_; }
+
+ private:
+  void handle_chat(const httplib::Request& req, httplib::Response& res);
+  void handle_models(const httplib::Request& req, httplib::Response& res);
+  bool authorized(const httplib::Request& req) const;
+  bool wait_or_stop(double seconds);  // false when stopping
+  void log(const std::string& line);
+
+  std::unique_ptr<ModelResponder> responder_;
+  std::string responder_name_;
+  ModelServerOptions options_;
+  LatencyModel latency_;
+  LogLine log_;
+  std::string required_key_;
+  std::unique_ptr<httplib::Server> http_;
+  std::thread thread_;
+  int port_ = 0;
+
+  std::mutex responder_mutex_;
+  mutable std::mutex mutex_;  // stats, the random streams, the request counter
+  ModelServerStats stats_;
+  common::Rng latency_rng_;
+  common::Rng fault_rng_;
+  uint64_t chat_requests_ = 0;
+  std::atomic<int> in_flight_{0};
+
+  std::mutex stop_mutex_;
+  std::condition_variable stop_cv_;
+  bool stopping_ = false;
+  std::mutex log_mutex_;
+};
+
+}  // namespace a3::agent::model_server
