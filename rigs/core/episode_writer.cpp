@@ -8,6 +8,8 @@
 #include <fstream>
 #include <set>
 
+#include "rigs/core/llm_run.hpp"
+
 namespace a3::rigs {
 namespace {
 
@@ -62,6 +64,8 @@ nlohmann::json build_episode(const Scenario& s, const RunOptions& o, const Recor
   nlohmann::json turns_rig = nlohmann::json::array();
   double gen_time_s = 0.0;
   int64_t prompt = 0, completion = 0, total = 0;
+  double cost_usd = 0.0;
+  bool has_cost = false;
   int attempts = 1;
   for (const auto& t : rec.turns) {
     nlohmann::json turn = t;
@@ -78,6 +82,10 @@ nlohmann::json build_episode(const Scenario& s, const RunOptions& o, const Recor
       prompt += u.value("prompt_tokens", int64_t{0});
       completion += u.value("completion_tokens", int64_t{0});
       total += u.value("total_tokens", int64_t{0});
+      if (u.contains("cost") && u["cost"].is_number()) {
+        cost_usd += u["cost"].get<double>();
+        has_cost = true;
+      }
     }
   }
   const bool crashed = last.crashed || kinds.count("crash") > 0;
@@ -86,7 +94,12 @@ nlohmann::json build_episode(const Scenario& s, const RunOptions& o, const Recor
   nlohmann::json trajectory = nlohmann::json::array();
   for (const auto& p : rec.trajectory) trajectory.push_back({p[0], p[1], p[2], p[3], p[4], p[5]});
 
-  return {
+  nlohmann::json usage = {{"prompt_tokens", prompt}, {"completion_tokens", completion}, {"total_tokens", total}};
+  if (has_cost) usage["cost"] = cost_usd;  // as OpenRouter reports it, summed over the turns
+  // An llm agent is named by its endpoint's model and provider (the corpus's folder layout).
+  const LlmAgentIdentity llm = llm_agent_identity(o);
+
+  nlohmann::json episode = {
       {"initial_state", initial},
       {"dialogue", dialogue},
       {"final_state", final_state},
@@ -99,7 +112,7 @@ nlohmann::json build_episode(const Scenario& s, const RunOptions& o, const Recor
         {"gen_time_s", gen_time_s},
         {"attempts_used", attempts},
         {"generation_failed", false},
-        {"usage", {{"prompt_tokens", prompt}, {"completion_tokens", completion}, {"total_tokens", total}}}}},
+        {"usage", usage}}},
       {"_rig",
        {{"status", f.status},
         {"scenario", s.name},
@@ -126,6 +139,11 @@ nlohmann::json build_episode(const Scenario& s, const RunOptions& o, const Recor
                         {"max_speed_mps", rec.max_speed_mps},
                         {"crashed", crashed}}},
         {"counters", f.counters}}}};
+  if (!llm.model.empty()) {
+    episode["_meta"]["model"] = llm.model;
+    episode["_meta"]["provider"] = llm.provider;
+  }
+  return episode;
 }
 
 void write_episode(const std::filesystem::path& dir, const nlohmann::json& episode) {

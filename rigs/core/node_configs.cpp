@@ -8,9 +8,11 @@
 #include "agent/conversation/replay_agent.hpp"
 #include "agent/conversation/scripted_agent.hpp"
 #include "agent/conversation/think_time.hpp"
+#include "agent/llm/llm_agent.hpp"
 #include "common/json_file.hpp"
 #include "dynamics/scenario_setup.hpp"
 #include "linkemu/network_trace.hpp"
+#include "rigs/core/llm_run.hpp"
 #include "rigs/fc_setup.hpp"
 
 namespace a3::rigs {
@@ -99,9 +101,11 @@ std::unique_ptr<agent::Agent> make_agent(const RunOptions& o) {
       if (p.is_relative()) p = o.shared_dir / "alphabench" / "eval_runs" / p;
     }
     inner = std::make_unique<agent::ReplayAgent>(agent::ReplayAgent::from_file(p));
+  } else if (o.agent == "llm") {
+    inner = std::make_unique<agent::llm::LlmAgent>(std::make_unique<agent::llm::LlmClient>(llm_endpoint(o)));
   } else {
     throw std::invalid_argument("unknown agent '" + o.agent +
-                                "' (scripted, replay:<episode.json>, replay:alphabench:<path>)");
+                                "' (scripted, llm, replay:<episode.json>, replay:alphabench:<path>)");
   }
   const agent::ThinkTime think = agent::ThinkTime::parse(o.think_time);
   if (think.is_zero()) return inner;
