@@ -34,6 +34,10 @@ int run(RunArgs& args) {
   RunOptions& o = args.options;
   o.runtime = args.runtime == "virtual" ? Runtime::kVirtual : Runtime::kReal;
   if (!args.out.empty()) o.out_dir = args.out;
+  if (o.processes && o.runtime == Runtime::kVirtual) {
+    throw std::invalid_argument("--processes: runs in real time only (virtual time is one process by design); drop "
+                                "--runtime virtual or --processes");
+  }
   if (const char* shared = std::getenv("A3_SHARED_DIR"); shared != nullptr && *shared != '\0') o.shared_dir = shared;
   const Scenario scenario = load_scenario(o.scenario, o.shared_dir);
   auto print = [&](const std::string& line) {
@@ -103,13 +107,32 @@ A3_REGISTER_COMMAND("10-run", [](CLI::App& app) {
       "agent's tool calls cross the emulated 6G link to the vehicle, the flight controller flies over CAN, and the "
       "episode is written (episode.json in the α³-Bench format, an LCM log, a trajectory plot) and scored. Exit "
       "status: 0 the episode was written, 2 bad usage or input, 3 interrupted (episode written), 4 a node failed "
-      "(episode written).");
+      "(episode written).\n"
+      "--agent llm asks an OpenAI-compatible endpoint (hosted API, OpenRouter, vLLM, llama.cpp, Ollama, or "
+      "`a3rig serve-model`) for every agent turn; its API key is read only from the environment, never from the "
+      "command line: A3_LLM_API_KEY, else the first line of the file named by A3_LLM_API_KEY_FILE, else "
+      "OPENAI_API_KEY (none: no Authorization header, for local servers). A3_LLM_BASE_URL and A3_LLM_MODEL "
+      "give --llm-base-url and --llm-model when those are not given; A3_LLM_PROVIDER names the provider in the "
+      "episode's _meta (default: from the URL).");
   RunOptions& o = args->options;
   cmd->add_option("--scenario", o.scenario,
                   "built-in scenario (survey-field, parcel-delivery, bridge-inspection, thermal-search, nfz-detour, "
                   "traffic-conflict), a scenario JSON file, or alphabench:<path> (an initial_state of the public "
                   "corpus, relative to ../shared/alphabench/eval_runs)");
-  cmd->add_option("--agent", o.agent, "scripted (default), replay:<episode.json> or replay:alphabench:<path>");
+  cmd->add_option("--agent", o.agent,
+                  "scripted (default), llm (an OpenAI-compatible model: --llm-base-url, --llm-model), "
+                  "replay:<episode.json> or replay:alphabench:<path>");
+  cmd->add_option("--llm-base-url", o.llm_base_url,
+                  "--agent llm: the endpoint, e.g. https://api.openai.com/v1, https://openrouter.ai/api/v1, "
+                  "http://127.0.0.1:8088/v1 (default $A3_LLM_BASE_URL)");
+  cmd->add_option("--llm-model", o.llm_model,
+                  "--agent llm: the model, e.g. gpt-4.1-mini, anthropic/claude-haiku-4.5 (default $A3_LLM_MODEL)");
+  cmd->add_option("--llm-max-tokens", o.llm_max_tokens, "--agent llm: completion tokens per call (default 2048)")
+      ->check(CLI::Range(1, 1000000));
+  cmd->add_option("--llm-timeout", o.llm_timeout_s,
+                  "--agent llm: seconds one HTTP attempt may take (default 180); in real time the world flies on "
+                  "meanwhile")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--think-time", o.think_time,
                   "latency added to every agent turn: seconds, fixed:S, uniform:A,B, normal:M,SD, lognormal:MEDIAN,SIGMA, "
                   "exp:MEAN, or model:<name> (a model of the paper)");
@@ -127,6 +150,9 @@ A3_REGISTER_COMMAND("10-run", [](CLI::App& app) {
   cmd->add_option("--can", o.can,
                   "real time: the CAN bus between bridge and flight controller: userspace (a private bus, default), "
                   "or an interface such as vcan0 or can0 (SocketCAN)");
+  cmd->add_flag("--processes", o.processes,
+                "real time: run dynamics, bridge, fc, linkemu and the vehicle side as processes of their own "
+                "(`a3rig node part NAME`), talking only LCM and CAN; a process that dies ends the run (status 4)");
   cmd->add_option("--integrator", o.integrator, "cvode (default) or ode")->check(CLI::IsMember({"cvode", "ode"}));
   cmd->add_option("--max-turns", o.max_turns, "turn budget (default 12)")->check(CLI::Range(2, 100));
   cmd->add_option("--min-turns", o.min_turns, "fewest turns before the dialogue may end (default 8)")->check(CLI::Range(2, 100));

@@ -20,6 +20,8 @@
 #include "rigs/core/episode_writer.hpp"
 #include "rigs/core/lcm_log_node.hpp"
 #include "rigs/core/node_configs.hpp"
+#include "rigs/core/rig_nodes.hpp"
+#include "rigs/core/rig_processes.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -79,76 +81,7 @@ struct Reporter {
   }
 };
 
-nlohmann::json direction_json(const linkemu::DirectionStats& d) {
-  nlohmann::json dropped = nlohmann::json::object();
-  for (std::size_t r = 0; r < linkemu::kDropReasonCount; ++r) {
-    dropped[linkemu::to_string(static_cast<linkemu::DropReason>(r))] = d.dropped[r];
-  }
-  return {{"received", d.received}, {"delivered", d.delivered}, {"lost", d.lost}, {"dropped", dropped},
-          {"bytes_delivered", d.bytes_delivered}};
-}
-
-struct Nodes {
-  std::unique_ptr<dynamics::DynamicsNode> dynamics;
-  std::unique_ptr<bridge::BridgeNode> bridge;
-  std::unique_ptr<bridge::FcNode> fc;
-  std::unique_ptr<linkemu::LinkEmulatorNode> link;
-  std::unique_ptr<agent::ToolServerNode> tools;
-  std::unique_ptr<agent::AirspaceMonitorNode> monitor;
-  std::unique_ptr<agent::ConversationNode> conversation;
-  std::unique_ptr<EpisodeRecorderNode> recorder;
-  std::unique_ptr<LcmLogNode> log;
-
-  std::vector<common::Node*> in_start_order() const {
-    std::vector<common::Node*> out = {recorder.get()};
-    if (log) out.push_back(log.get());
-    for (common::Node* n : std::initializer_list<common::Node*>{dynamics.get(), bridge.get(), fc.get(), link.get(),
-                                                               tools.get(), monitor.get(), conversation.get()}) {
-      out.push_back(n);
-    }
-    return out;
-  }
-  nlohmann::json counters() const {
-    const auto d = dynamics->counters();
-    const auto t = tools->counters();
-    const auto c = conversation->counters();
-    return {{"dynamics", {{"steps", d.steps}, {"commands", d.commands_received}, {"rejected", d.commands_rejected},
-                          {"clamped", d.commands_clamped}, {"stale_steps", d.stale_steps}}},
-            {"conversation", {{"actions_sent", c.actions_sent}, {"observations", c.observations}, {"timeouts", c.timeouts},
-                              {"stale_observations", c.stale_observations}, {"heartbeats", c.heartbeats}}},
-            {"tool_server", {{"link_messages", t.link_messages}, {"malformed_dropped", t.malformed_dropped},
-                             {"mcp_calls", t.mcp_calls}, {"a2a_messages", t.a2a_messages}, {"errors", t.errors},
-                             {"gate_refusals", t.gate_refusals}, {"fc_commands", t.fc_commands},
-                             {"fc_refusals", t.fc_refusals}, {"timeouts", t.timeouts},
-                             {"routes_completed", t.routes_completed}, {"images_captured", t.images_captured},
-                             {"image_bytes_downlinked", t.image_bytes_downlinked}}},
-            {"link", {{"up", direction_json(link->stats().up)}, {"down", direction_json(link->stats().down)},
-                      {"slice_switch_requests", link->stats().slice_switch_requests}}},
-            {"lcm_log_events", log ? log->events() : 0}};
-  }
-};
-
-Nodes make_nodes(const RigConfigs& cfg, const Scenario& s, const RunOptions& o, bridge::CanBus& can_bridge,
-                 bridge::CanBus& can_fc, bool agent_in_thread) {
-  Nodes n;
-  n.recorder = std::make_unique<EpisodeRecorderNode>(s.mission);
-  if (o.write_lcm_log) {
-    std::filesystem::create_directories(o.out_dir);
-    n.log = std::make_unique<LcmLogNode>(o.out_dir / "episode.lcmlog");
-  }
-  n.dynamics = std::make_unique<dynamics::DynamicsNode>(cfg.dynamics);
-  n.bridge = std::make_unique<bridge::BridgeNode>(can_bridge, cfg.bridge);
-  n.fc = std::make_unique<bridge::FcNode>(can_fc, cfg.fc);
-  n.link = std::make_unique<linkemu::LinkEmulatorNode>(cfg.link);
-  n.tools = std::make_unique<agent::ToolServerNode>(cfg.tool_server);
-  n.monitor = std::make_unique<agent::AirspaceMonitorNode>(cfg.monitor);
-  agent::ConversationConfig conv = cfg.conversation;
-  conv.agent_runs_in_thread = agent_in_thread;
-  n.conversation = std::make_unique<agent::ConversationNode>(conv, make_agent(o));
-  return n;
-}
-
-RunResult finish(const Scenario& s, const RunOptions& o, Nodes& n, const std::string& status, double mission_s,
+RunResult finish(const Scenario& s, const RunOptions& o, RigNodes& n, const std::string& status, double mission_s,
                  double wall_s, int64_t start_unix_us, const ProgressFn& progress) {
   RunResult result;
   result.status = status;
@@ -177,6 +110,12 @@ RunResult finish(const Scenario& s, const RunOptions& o, Nodes& n, const std::st
   return result;
 }
 
+std::vector<RigPart> all_parts() {
+  std::vector<RigPart> parts = rig_parts_outside_ground();
+  parts.insert(parts.begin(), RigPart::kGround);
+  return parts;
+}
+
 // A run's own LCM port on the usual multicast group (the loopback route covers the group, any
 // port), so that two runs on one host never hear each other; an explicit URL or
 // $LCM_DEFAULT_URL wins.
@@ -198,7 +137,7 @@ RunResult run_virtual(const Scenario& s, const RunOptions& o, const RigConfigs& 
   bridge::VirtualCanBus can(rt.scheduler());
   auto can_bridge = can.attach("bridge");
   auto can_fc = can.attach("fc");
-  Nodes n = make_nodes(cfg, s, o, *can_bridge, *can_fc, false);
+  RigNodes n = make_rig_nodes(all_parts(), cfg, o, s, {can_bridge.get(), can_fc.get()}, false);
   for (common::Node* node : n.in_start_order()) rt.add(*node);
   Reporter report{progress};
   std::string status;
@@ -227,17 +166,31 @@ RunResult run_real(const Scenario& s, const RunOptions& o, const RigConfigs& cfg
   const auto wall0 = SteadyClock::now();
   const int64_t unix0 = unix_now_us();
   const std::string can_spec = o.can == "userspace" ? "userspace:a3rig-run-" + std::to_string(::getpid()) : o.can;
-  auto can_bridge = bridge::open_can_bus(can_spec);
-  auto can_fc = bridge::open_can_bus(can_spec);
-  const bool agent_in_thread = o.agent == "llm";
-  Nodes n = make_nodes(cfg, s, o, *can_bridge, *can_fc, agent_in_thread);
   const std::string lcm_url = private_lcm_url(o.lcm_url);
   {
     common::LcmBus probe(lcm_url);
     probe.check_loopback();
   }
-  if (progress) progress("LCM: " + lcm_url + "  CAN: " + can_bridge->name());
-  const common::WallClock clock(o.real_time_factor);
+  const bool agent_in_thread = o.agent == "llm";
+  std::unique_ptr<bridge::CanBus> can_bridge, can_fc;
+  std::unique_ptr<RigProcesses> children;
+  std::vector<RigPart> in_process = all_parts();
+  if (o.processes) {
+    in_process = {RigPart::kGround};
+    children = std::make_unique<RigProcesses>(o.a3rig_exe, rig_parts_outside_ground(), o, lcm_url, can_spec);
+    if (progress) progress("started dynamics, bridge, fc, linkemu and vehicle as processes; waiting for them");
+    if (const std::string why = children->wait_ready(60.0); !why.empty()) {
+      children->stop();
+      throw std::runtime_error("a3rig run --processes: " + why);
+    }
+  } else {
+    can_bridge = bridge::open_can_bus(can_spec);
+    can_fc = bridge::open_can_bus(can_spec);
+  }
+  RigNodes n = make_rig_nodes(in_process, cfg, o, s, {can_bridge.get(), can_fc.get()}, agent_in_thread);
+  if (progress) progress("LCM: " + lcm_url + "  CAN: " + (can_bridge ? can_bridge->name() : can_spec));
+  const common::WallClock clock(o.real_time_factor, common::WallClock::monotonic_now_ns());
+  if (children) children->go(clock.epoch_mono_ns());
   std::vector<std::unique_ptr<common::RealTimeNodeThread>> threads;
   for (common::Node* node : n.in_start_order()) {
     threads.push_back(std::make_unique<common::RealTimeNodeThread>(*node, clock, lcm_url));
@@ -257,6 +210,9 @@ RunResult run_real(const Scenario& s, const RunOptions& o, const RigConfigs& cfg
         status = "node_failed: " + n.in_start_order()[i]->name() + ": " + threads[i]->failure();
       }
     }
+    if (status.empty() && children) {
+      if (const std::string why = children->check(); !why.empty()) status = "node_failed: " + why;
+    }
     const bool done = n.conversation->finished();
     if (done && dialogue_end_s < 0.0) dialogue_end_s = mission_s;
     if (r.last_state.crashed && crash_s < 0.0) crash_s = mission_s;
@@ -271,6 +227,7 @@ RunResult run_real(const Scenario& s, const RunOptions& o, const RigConfigs& cfg
       progress(text);
     }
   }
+  if (children) children->stop();
   for (auto it = threads.rbegin(); it != threads.rend(); ++it) (*it)->stop_and_join();
   const double wall = std::chrono::duration<double>(SteadyClock::now() - wall0).count();
   return finish(s, o, n, status, mission_s, wall, unix0, progress);

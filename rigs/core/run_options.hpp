@@ -12,6 +12,13 @@ enum class Runtime { kVirtual, kReal };
 struct RunOptions {
   std::string scenario = "survey-field";  // built-in name, file, or alphabench:<path>
   std::string agent = "scripted";          // scripted | replay:<episode file> | llm
+  // --agent llm: the OpenAI-compatible endpoint (rigs/core/llm_run.hpp). No API key here: it
+  // comes only from the environment, so that it never shows in a command line or a record.
+  std::string llm_base_url;                // empty: $A3_LLM_BASE_URL
+  std::string llm_model;                   // empty: $A3_LLM_MODEL
+  int llm_max_tokens = 2048;               // completion tokens per call
+  double llm_connect_timeout_s = 10.0;
+  double llm_timeout_s = 180.0;            // per HTTP attempt
   std::string think_time = "0";            // see agent/conversation/think_time.hpp
   std::string slice;                       // overrides the scenario's initial slice (eMBB, URLLC, mMTC); empty: keep
   Runtime runtime = Runtime::kReal;
@@ -20,6 +27,8 @@ struct RunOptions {
   double real_time_factor = 1.0;
   std::string lcm_url;                     // real time: default udpm ttl=0
   std::string can = "userspace";           // real time: userspace (private bus) or an interface (vcan0, can0)
+  bool processes = false;                  // real time: every part but the ground side as a process of its own
+  std::filesystem::path a3rig_exe = "/proc/self/exe";  // what --processes starts (`a3rig node part ...`)
   std::string integrator = "cvode";
   double dynamics_rate_hz = 250.0;
   int min_turns = 8;

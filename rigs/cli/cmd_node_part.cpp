@@ -1,0 +1,107 @@
+// `a3rig node part NAME`: one part of a rig (dynamics, bridge, fc, linkemu or vehicle) built
+// from a scenario and run options exactly as `a3rig run` builds it, as a process of its own.
+// `a3rig run --processes` starts these; they say "ready" on stdout once built and start on
+// "go <CLOCK_MONOTONIC ns>" read from stdin (the epoch every process of the run shares), or
+// at once with --start-now. They run until SIGINT/SIGTERM or until a node fails (exit 1).
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "bridge/can/can_bus_factory.hpp"
+#include "common/clock.hpp"
+#include "common/runtime.hpp"
+#include "rigs/cli/command_registry.hpp"
+#include "rigs/cli/signal_stop.hpp"
+#include "rigs/core/node_configs.hpp"
+#include "rigs/core/rig_nodes.hpp"
+
+namespace a3::rigs {
+namespace {
+
+struct PartArgs {
+  std::string part;
+  RunOptions options;
+  bool start_now = false;
+};
+
+int run_part(PartArgs& args) {
+  install_stop_signals();
+  RunOptions& o = args.options;
+  o.runtime = Runtime::kReal;
+  o.write_lcm_log = false;
+  const RigPart part = parse_rig_part(args.part);
+  if (part == RigPart::kGround) throw std::invalid_argument("node part: the ground side runs in `a3rig run` itself");
+  const Scenario scenario = load_scenario(o.scenario, o.shared_dir);
+  const RigConfigs configs = make_rig_configs(scenario, o);
+  std::unique_ptr<bridge::CanBus> can;
+  RigNodeBuses buses;
+  if (part == RigPart::kBridge || part == RigPart::kFc) {
+    can = bridge::open_can_bus(o.can);
+    (part == RigPart::kBridge ? buses.can_bridge : buses.can_fc) = can.get();
+  }
+  RigNodes nodes = make_rig_nodes({part}, configs, o, scenario, buses, false);
+
+  int64_t epoch_ns = -1;
+  if (!args.start_now) {
+    std::printf("ready\n");
+    std::fflush(stdout);
+    std::string go;
+    if (!std::getline(std::cin, go) || go.rfind("go ", 0) != 0) {
+      std::fprintf(stderr, "[error] node part %s: expected 'go <epoch ns>' on stdin, got '%s'\n", args.part.c_str(),
+                   go.c_str());
+      return 1;
+    }
+    epoch_ns = std::stoll(go.substr(3));
+  }
+  const common::WallClock clock(o.real_time_factor, epoch_ns);
+  std::vector<std::unique_ptr<common::RealTimeNodeThread>> threads;
+  for (common::Node* node : nodes.in_start_order()) {
+    threads.push_back(std::make_unique<common::RealTimeNodeThread>(*node, clock, o.lcm_url));
+  }
+  for (auto& th : threads) th->start();
+  int status = 0;
+  while (!stop_requested() && status == 0) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    for (std::size_t i = 0; i < threads.size(); ++i) {
+      if (!threads[i]->failure().empty()) {
+        std::fprintf(stderr, "[error] node part %s: %s failed: %s\n", args.part.c_str(),
+                     nodes.in_start_order()[i]->name().c_str(), threads[i]->failure().c_str());
+        status = 1;
+      }
+    }
+  }
+  for (auto it = threads.rbegin(); it != threads.rend(); ++it) (*it)->stop_and_join();
+  return status;
+}
+
+}  // namespace
+
+A3_REGISTER_COMMAND("90-node-part", [](CLI::App& app) {
+  CLI::App* node = app.get_subcommand("node");
+  auto args = std::make_shared<PartArgs>();
+  CLI::App* cmd = node->add_subcommand(
+      "part",
+      "Run one part of a rig (dynamics, bridge, fc, linkemu or vehicle: the tool server and airspace monitor) "
+      "built from a scenario exactly as `a3rig run` builds it. `a3rig run --processes` starts one per part; it "
+      "prints 'ready' when built and starts on 'go <CLOCK_MONOTONIC ns>' from stdin (or at once with --start-now).");
+  RunOptions& o = args->options;
+  cmd->add_option("name", args->part, "dynamics, bridge, fc, linkemu or vehicle")->required();
+  cmd->add_option("--scenario", o.scenario, "as for `a3rig run`")->required();
+  cmd->add_option("--seed", o.seed, "as for `a3rig run` (default 42)");
+  cmd->add_option("--slice", o.slice, "as for `a3rig run`");
+  cmd->add_option("--rtf", o.real_time_factor, "simulated seconds per wall second (default 1)")->check(CLI::PositiveNumber);
+  cmd->add_option("--lcm-url", o.lcm_url, "LCM URL shared by every part of the run")->required();
+  cmd->add_option("--can", o.can, "CAN bus between bridge and fc: userspace:NAME, vcan0, can0, ...");
+  cmd->add_option("--integrator", o.integrator, "cvode (default) or ode")->check(CLI::IsMember({"cvode", "ode"}));
+  cmd->add_option("--dynamics-rate-hz", o.dynamics_rate_hz, "dynamics step rate (default 250)")->check(CLI::PositiveNumber);
+  cmd->add_option("--shared-dir", o.shared_dir, "the ../shared folder (alphabench scenarios, traces)");
+  cmd->add_flag("--start-now", args->start_now, "start at once instead of waiting for 'go' on stdin");
+  cmd->callback([args] { command_exit_status() = run_part(*args); });
+});
+
+}  // namespace a3::rigs
