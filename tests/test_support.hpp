@@ -1,6 +1,8 @@
 // Helpers every test suite shares: where ../shared is, and skipping when it is absent.
 #pragma once
 
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -21,6 +23,12 @@ inline std::string shared_missing_message(const std::filesystem::path& what) {
   return "needs " + what.string() +
          " (the α³-Bench public release and DroneCAN vectors in ../shared/); "
          "put them beside the repository or set A3_SHARED_DIR";
+}
+
+// An LCM UDP multicast URL on a port of this test process's own (from its pid), so test programs
+// running side by side (ctest -j) or a user's rig never hear each other's messages.
+inline std::string private_udpm_url() {
+  return "udpm://239.255.76.67:" + std::to_string(27668 + ::getpid() % 20000) + "?ttl=0";
 }
 
 }  // namespace a3::test

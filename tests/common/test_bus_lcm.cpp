@@ -21,11 +21,12 @@
 #include "common/log.hpp"
 #include "tests/common/bus_test_messages.hpp"
 #include "tests/common/common_test_util.hpp"
+#include "tests/test_support.hpp"
 
 namespace a3::common {
 namespace {
 
-constexpr const char* kUdpmUrl = "udpm://239.255.76.67:7667?ttl=0";
+const std::string kUdpmUrl = a3::test::private_udpm_url();
 
 // A channel name no other test run on this host uses (udpm traffic is host-wide).
 std::string unique_channel(const std::string& base) {

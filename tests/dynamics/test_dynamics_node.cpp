@@ -16,6 +16,7 @@
 #include "dynamics/actuator_script_node.hpp"
 #include "dynamics/dynamics_node.hpp"
 #include "tests/dynamics/manoeuvre.hpp"
+#include "tests/test_support.hpp"
 
 namespace a3::dynamics {
 namespace {
@@ -172,7 +173,8 @@ TEST(DynamicsNode, VirtualRuntimeIsDeterministicForASeed) {
 }
 
 // The same 20 s open-loop flight in virtual time and in real time (real-time factor 5, nodes in
-// their own threads over LCM UDP multicast). Commands are published half-way between the
+// their own threads over LCM UDP multicast on a port of this process's own: on the shared
+// default port another test's actuator commands once flew this vehicle 15 m off). Commands are published half-way between the
 // dynamics steps, so both runtimes apply each one in the same step: the trajectories agree to
 // within 1 cm and 0.1° unless a command is delayed by more than 1 ms of wall time (then by one
 // step, well inside the stated tolerance of 10 cm and 1°).
@@ -195,7 +197,7 @@ TEST(DynamicsNode, VirtualAndRealTimeGiveTheSameTrajectory) {
   rt.add(v_script);
   rt.run_until(kEnd_us);
 
-  const std::string url = "udpm://239.255.76.67:7667?ttl=0";
+  const std::string url = a3::test::private_udpm_url();
   try {
     common::LcmBus probe(url);
     probe.check_loopback();

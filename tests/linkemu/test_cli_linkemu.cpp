@@ -17,6 +17,7 @@
 #include "tests/common/common_test_util.hpp"
 #include "tests/integration/run_command.hpp"
 #include "tests/linkemu/linkemu_test_util.hpp"
+#include "tests/test_support.hpp"
 
 namespace a3::linkemu {
 namespace {
@@ -71,7 +72,7 @@ TEST(CliLinkemu, RunsForTheGivenDurationAndSummarises) {
 }
 
 TEST(CliLinkemu, RelaysMessagesFromAnotherProcessAndWritesRecords) {
-  const char* url = "udpm://239.255.76.67:7667?ttl=0";
+  const std::string url = a3::test::private_udpm_url();
   const char* require_env = std::getenv("A3_REQUIRE_UDPM");
   std::unique_ptr<common::LcmBus> bus;
   try {

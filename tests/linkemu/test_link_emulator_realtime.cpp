@@ -16,6 +16,7 @@
 #include "common/runtime.hpp"
 #include "linkemu/link_emulator_node.hpp"
 #include "tests/linkemu/linkemu_test_util.hpp"
+#include "tests/test_support.hpp"
 
 namespace a3::linkemu {
 namespace {
@@ -70,7 +71,7 @@ TEST(LinkEmulatorRealTime, RelaysOnItsOwnThreadWithTheEmulatedTiming) {
 }
 
 TEST(LinkEmulatorRealTime, RelaysBetweenTwoLcmBusesOverUdpm) {
-  const char* url = "udpm://239.255.76.67:7667?ttl=0";
+  const std::string url = a3::test::private_udpm_url();
   const char* require_env = std::getenv("A3_REQUIRE_UDPM");
   const bool required = require_env != nullptr && std::string(require_env) == "1";
   try {
