@@ -1,0 +1,212 @@
+// `a3rig sweep`: a grid of episodes (scenarios × agents × think times × slices × seeds), each
+// run as its own `a3rig run`, in parallel, resumable and shardable, with results.csv,
+// aggregate.csv and latency-sensitivity plots; `--plot-only DIR` re-aggregates (and merges
+// shards) from the results files alone.
+#include <CLI/CLI.hpp>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "rigs/cli/command_registry.hpp"
+#include "rigs/cli/signal_stop.hpp"
+#include "rigs/core/builtin_scenarios.hpp"
+#include "rigs/core/scenario.hpp"
+#include "rigs/sweep/cell_result.hpp"
+#include "rigs/sweep/cell_runner.hpp"
+#include "rigs/sweep/sweep_report.hpp"
+#include "rigs/sweep/sweep_runner.hpp"
+
+namespace a3::rigs {
+namespace {
+
+struct SweepArgs {
+  std::string scenarios;
+  std::string agents = "scripted";
+  std::string think_times = "0,5,10,20,30,60,120";
+  std::string slices = "eMBB,URLLC,mMTC";
+  std::string seeds = "1-5";
+  int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  std::string runtime = "virtual";
+  double real_time_factor = 1.0;
+  std::string shard = "0/1";
+  std::string out = "out/sweep";
+  double cell_timeout_s = 900.0;
+  bool rerun = false;
+  bool dry_run = false;
+  std::string plot_only;
+  std::string llm_base_url;
+  std::string llm_model;
+};
+
+std::string all_builtin_scenarios() {
+  std::string names;
+  for (const auto& [name, text] : builtin_scenarios()) names += (names.empty() ? "" : ",") + std::string(name);
+  return names;
+}
+
+void print_report(const sweep::SweepReport& report) {
+  std::printf("aggregate: %s (%zu groups; 95 %% CI: Student t for α³ and SP, Wilson for the success rate)\n",
+              report.aggregate_path.c_str(), report.aggregates.size());
+  for (const auto& png : report.plots.pngs) std::printf("plot:      %s\n", png.c_str());
+  if (!report.plots.problem.empty()) std::printf("plots:     not all drawn: %s\n", report.plots.problem.c_str());
+}
+
+int plot_only(const std::filesystem::path& dir) {
+  const sweep::MergedReport merged = sweep::reaggregate(dir);
+  for (const auto& f : merged.merged_files) std::printf("read:      %s\n", f.c_str());
+  std::printf("results:   %s (%zu cells)\n", (dir / "results.csv").c_str(), merged.rows);
+  print_report(merged.report);
+  return 0;
+}
+
+int run(const SweepArgs& args) {
+  if (!args.plot_only.empty()) return plot_only(args.plot_only);
+  const sweep::SweepAxes axes = sweep::make_axes(args.scenarios.empty() ? all_builtin_scenarios() : args.scenarios,
+                                                 args.agents, args.think_times, args.slices, args.seeds);
+  const sweep::Shard shard = sweep::parse_shard(args.shard);
+  std::filesystem::path shared_dir = "../shared";
+  if (const char* shared = std::getenv("A3_SHARED_DIR"); shared != nullptr && *shared != '\0') shared_dir = shared;
+  for (const auto& scenario : axes.scenarios) {
+    try {
+      (void)load_scenario(scenario, shared_dir);
+    } catch (const std::exception& e) {
+      throw std::invalid_argument("--scenarios: '" + scenario + "': " + e.what());
+    }
+  }
+  const std::vector<sweep::SweepCell> grid = sweep::expand_grid(axes);
+  const std::vector<sweep::SweepCell> mine = sweep::cells_of_shard(grid, shard);
+
+  sweep::ChildProcessOptions child;
+  char exe[4096];
+  const ssize_t length = ::readlink("/proc/self/exe", exe, sizeof exe - 1);
+  if (length <= 0) throw std::runtime_error("cannot find the a3rig program (/proc/self/exe)");
+  child.a3rig_exe = std::string(exe, static_cast<std::size_t>(length));
+  child.runtime = args.runtime;
+  child.real_time_factor = args.real_time_factor;
+  child.cell_timeout_s = args.cell_timeout_s;
+  if (!args.llm_base_url.empty()) child.extra_run_args.insert(child.extra_run_args.end(), {"--llm-base-url", args.llm_base_url});
+  if (!args.llm_model.empty()) child.extra_run_args.insert(child.extra_run_args.end(), {"--llm-model", args.llm_model});
+  sweep::ChildProcessCellRunner runner(child);
+
+  std::fprintf(stderr,
+               "a3rig sweep: %zu cells (%zu scenarios × %zu agents × %zu think times × %zu slices × %zu seeds); "
+               "shard %d/%d: %zu cells; %d jobs; %s time; output %s\n",
+               grid.size(), axes.scenarios.size(), axes.agents.size(), axes.think_times.size(), axes.slices.size(),
+               axes.seeds.size(), shard.index, shard.count, mine.size(), args.jobs, args.runtime.c_str(),
+               args.out.c_str());
+  if (args.dry_run) {
+    for (const auto& cell : mine) {
+      const auto dir = sweep::cell_dir(args.out, cell);
+      const sweep::CellCheck check = sweep::check_cell(dir, cell);
+      std::string line;
+      for (const auto& a : runner.command(cell, dir)) line += (line.empty() ? "" : " ") + a;
+      std::printf("%5zu  %s  %s\n", cell.index, check.complete && !args.rerun ? "done  " : "to run", line.c_str());
+    }
+    return 0;
+  }
+
+  install_stop_signals();
+  std::atomic<bool> stop{false};
+  std::atomic<bool> finished{false};
+  std::thread watcher([&] {
+    while (!finished) {
+      if (stop_requested()) stop = true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  });
+  sweep::ProgressBar bar(stderr, ::isatty(STDERR_FILENO) == 1);
+  sweep::SweepRunOptions options;
+  options.out_dir = args.out;
+  options.shard = shard;
+  options.jobs = args.jobs;
+  options.rerun_complete = args.rerun;
+  sweep::SweepRunSummary summary;
+  try {
+    summary = sweep::run_sweep(grid, options, runner, [&](const sweep::ProgressCounts& c) { bar.update(c); }, stop);
+  } catch (...) {
+    finished = true;
+    watcher.join();
+    throw;
+  }
+  finished = true;
+  watcher.join();
+  bar.finish(summary.counts);
+
+  const auto& c = summary.counts;
+  std::printf("results:   %s (%zu cells: %zu run, %zu already complete, %zu failed%s)\n", summary.results_path.c_str(),
+              c.total, c.ran, c.skipped, c.failed, summary.stopped ? ", the rest not run: stopped" : "");
+  if (c.ran + c.failed > 0) {
+    std::printf("wall time: %.1f s for %zu episodes run with %d jobs: %.2f episodes/s\n", c.elapsed_s, c.ran + c.failed,
+                args.jobs, static_cast<double>(c.ran + c.failed) / std::max(c.elapsed_s, 1e-9));
+  }
+  for (const auto& row : summary.rows) {
+    if (!row.has_episode && row.status.rfind("not_run", 0) != 0) {
+      std::printf("failed:    %s / %s / think %s / %s / seed %llu: %s\n", row.scenario.c_str(), row.agent.c_str(),
+                  row.think_time.c_str(), row.slice.c_str(), static_cast<unsigned long long>(row.seed),
+                  row.status.c_str());
+    }
+  }
+  if (shard.count == 1) {
+    print_report(sweep::write_report(args.out, summary.rows));
+  } else {
+    std::printf("shard %d/%d done; once every shard is, gather their folders into one (e.g. cp -r shard-*/. all/) and "
+                "run `a3rig sweep --plot-only all` for results.csv, aggregate.csv and the plots\n",
+                shard.index, shard.count);
+  }
+  if (summary.stopped || stop) return 3;
+  return c.failed > 0 ? 1 : 0;
+}
+
+}  // namespace
+
+A3_REGISTER_COMMAND("15-sweep", [](CLI::App& app) {
+  auto args = std::make_shared<SweepArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "sweep",
+      "Run a grid of episodes — scenarios × agents × think times × slices × seeds — each as its own `a3rig run` "
+      "(virtual time by default), up to --jobs at a time. Every cell gets a folder "
+      "OUT/cells/<scenario>/<agent>/think-<t>/<slice>/seed-<s>/ (episode.json, run.log); OUT/results.csv has a row "
+      "per episode (keys, status, success, α³, the six pillars, mission and wall time), OUT/aggregate.csv the mean "
+      "α³ and SP with Student-t 95 % intervals and the success rate with its Wilson 95 % interval per scenario × "
+      "agent × think time × slice, and OUT/plots/sweep_<scenario>_<agent>.png plots them against think time, one "
+      "line per slice, with the intervals as bands. Resumable: a cell whose episode.json is complete is not run "
+      "again (--rerun to force). Shardable: --shard I/N runs the cells whose grid index % N == I and writes "
+      "OUT/results.shard-I-of-N.csv; to merge, gather the shards' folders into one and run --plot-only on it. "
+      "Exit status: 0 every cell complete, 1 some cell failed (see its run.log), 2 bad usage, 3 stopped (Ctrl-C).");
+  cmd->add_option("--scenarios", args->scenarios,
+                  "comma list of scenarios, as `a3rig run --scenario` takes them (default: every built-in one)");
+  cmd->add_option("--agents", args->agents, "comma list: scripted, llm, replay:<episode.json> (default scripted)");
+  cmd->add_option("--think-times", args->think_times,
+                  "comma list of think-time specs as `a3rig run --think-time` takes them: seconds, fixed:S, "
+                  "uniform:A,B, normal:M,SD, lognormal:MEDIAN,SIGMA, exp:MEAN, model:<name> (default "
+                  "0,5,10,20,30,60,120); plotted at their mean per agent turn");
+  cmd->add_option("--slices", args->slices, "comma list of starting slices: eMBB, URLLC, mMTC (default all three)");
+  cmd->add_option("--seeds", args->seeds, "comma list of seeds and ranges, e.g. 1,2,3 or 1-5 (default 1-5)");
+  cmd->add_option("-j,--jobs", args->jobs, "episodes run at once (default: the number of cores)")
+      ->check(CLI::Range(1, 1024));
+  cmd->add_option("--runtime", args->runtime, "virtual (default: as fast as possible) or real (the wall clock)")
+      ->check(CLI::IsMember({"real", "virtual"}));
+  cmd->add_option("--rtf", args->real_time_factor, "real time: simulated seconds per wall second (default 1)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--shard", args->shard, "I/N: run only the cells whose grid index % N == I (default 0/1: all)");
+  cmd->add_option("--out", args->out, "output folder (default out/sweep)");
+  cmd->add_option("--cell-timeout", args->cell_timeout_s,
+                  "wall seconds one episode may take before it is killed and recorded as failed; 0: no limit "
+                  "(default 900)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--rerun", args->rerun, "run every cell again, complete or not");
+  cmd->add_flag("--dry-run", args->dry_run, "list the cells of this shard (done or to run) and their commands");
+  cmd->add_option("--plot-only", args->plot_only,
+                  "DIR: run nothing; merge DIR's results.csv and results.shard-*.csv into DIR/results.csv and write "
+                  "aggregate.csv and the plots again");
+  cmd->add_option("--llm-base-url", args->llm_base_url, "--agents llm: passed to every `a3rig run`");
+  cmd->add_option("--llm-model", args->llm_model, "--agents llm: passed to every `a3rig run`");
+  cmd->callback([args] { command_exit_status() = run(*args); });
+});
+
+}  // namespace a3::rigs
