@@ -1,0 +1,68 @@
+// A small real sweep: the traffic-conflict scenario with think times 0 and 60 s on one slice and
+// one seed, each cell a child `a3rig run` in virtual time. The slow agent misses the conflict
+// (a separation breach: SP 0.5) and the fast one does not; results.csv, aggregate.csv and the
+// PNG are written, and a resumed sweep runs nothing.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "rigs/sweep/sweep_report.hpp"
+#include "rigs/sweep/sweep_runner.hpp"
+#include "tests/test_support.hpp"
+
+namespace a3::rigs::sweep {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(SweepEndToEnd, ASlowAgentBreachesSeparationAndTheFigureIsDrawn) {
+  const fs::path out = fs::temp_directory_path() / ("a3-sweep-e2e-" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  ::setenv("A3_SHARED_DIR", a3::test::shared_dir().c_str(), 0);
+  const auto grid = expand_grid(make_axes("traffic-conflict", "scripted", "0,60", "URLLC", "1"));
+  ASSERT_EQ(grid.size(), 2u);
+  ChildProcessOptions child;
+  child.a3rig_exe = A3RIG_EXE;
+  child.cell_timeout_s = 120.0;
+  ChildProcessCellRunner runner(child);
+  SweepRunOptions options;
+  options.out_dir = out;
+  options.jobs = 2;
+  const std::atomic<bool> no_stop{false};
+
+  const SweepRunSummary summary = run_sweep(grid, options, runner, {}, no_stop);
+  ASSERT_EQ(summary.counts.ran, 2u) << summary.rows[0].status << "\n" << summary.rows[1].status;
+  const auto rows = read_results_csv(out / "results.csv");
+  ASSERT_EQ(rows.size(), 2u);
+  const ResultRow& fast = rows[0];
+  const ResultRow& slow = rows[1];
+  EXPECT_EQ(fast.think_time, "0");
+  EXPECT_EQ(slow.think_time, "60");
+  EXPECT_DOUBLE_EQ(slow.think_time_mean_s, 60.0);
+  ASSERT_TRUE(fast.valid && slow.valid);
+  EXPECT_DOUBLE_EQ(fast.sp, 1.0);
+  EXPECT_DOUBLE_EQ(slow.sp, 0.5);
+  EXPECT_GT(fast.alpha3, slow.alpha3);
+  EXPECT_GT(fast.mission_time_s, 0.0);
+  EXPECT_TRUE(fs::exists(out / fast.episode));
+  std::ifstream slow_episode(out / slow.episode);
+  EXPECT_TRUE(nlohmann::json::parse(slow_episode)["final_state"]["safety_flags"]["separation_breach"].get<bool>());
+  EXPECT_TRUE(fs::exists(fs::path(out / slow.episode).parent_path() / "run.log"));
+
+  const SweepReport report = write_report(out, summary.rows);
+  ASSERT_EQ(report.aggregates.size(), 2u);
+  EXPECT_DOUBLE_EQ(report.aggregates[1].sp_mean, 0.5);
+  ASSERT_TRUE(report.plots.problem.empty()) << report.plots.problem;
+  ASSERT_EQ(report.plots.pngs.size(), 1u);
+  EXPECT_GT(fs::file_size(report.plots.pngs[0]), 10000u);
+
+  const SweepRunSummary again = run_sweep(grid, options, runner, {}, no_stop);
+  EXPECT_EQ(again.counts.skipped, 2u);
+  EXPECT_EQ(again.counts.ran, 0u);
+  fs::remove_all(out);
+}
+
+}  // namespace
+}  // namespace a3::rigs::sweep
