@@ -14,8 +14,10 @@
 #include <string>
 #include <thread>
 
+#include "agent/model_server/corpus_responder.hpp"
 #include "agent/model_server/model_server.hpp"
 #include "agent/model_server/reply_file_responder.hpp"
+#include "agent/model_server/scripted_responder.hpp"
 #include "rigs/cli/command_registry.hpp"
 #include "rigs/cli/signal_stop.hpp"
 
@@ -43,11 +45,32 @@ ResponderChoice reply_file_choice() {
           }};
 }
 
+ResponderChoice corpus_choice() {
+  return {"replays a recorded α³-Bench model folder to `a3rig generate`: each request gets the recorded episode of "
+          "its scenario and seed, with the recorded gen_time_s as latency (--latency recorded, scaled by "
+          "--time-scale) and the recorded token usage; recorded retries and failure stubs are replayed as failed "
+          "attempts (the public folders hold seed 42 only, as ep-00: run generate with --seeds 42)",
+          [](CLI::Option_group& flags) {
+            auto o = std::make_shared<ms::CorpusResponderOptions>();
+            flags.add_option("--corpus", o->folder,
+                             "a model's folder of sc-XXXX-ep-YY.json files, e.g. "
+                             "alphabench/eval_runs/openai/chatgpt-4o-latest/uav");
+            return ResponderFactory([o] { return ms::make_corpus_responder(*o); });
+          }};
+}
+
+ResponderChoice scripted_choice() {
+  return {"the rig's scripted policy answers the llm agent's turns (closed-loop `a3rig run --agent llm` offline)",
+          [](CLI::Option_group&) { return ResponderFactory([] { return std::make_unique<ms::ScriptedResponder>(); }); }};
+}
+
 // The responders. To add one: write a <name>_choice() like reply_file_choice() above (its flags
 // go into its own option group, its options struct into its own header) and add one line here.
 std::map<std::string, ResponderChoice> responder_choices() {
   std::map<std::string, ResponderChoice> choices;
+  choices["corpus"] = corpus_choice();
   choices["reply-file"] = reply_file_choice();
+  choices["scripted"] = scripted_choice();
   return choices;
 }
 
