@@ -205,6 +205,55 @@ TEST(GenerateEndToEnd, Gpt51RetriesGiveTheRecordedLeaderboardRow) {
   generate_and_compare({"openai/gpt-5.1-chat", 0.0, 8});
 }
 
+TEST(GenerateEndToEnd, AnInterruptedRunContinuesWhereItStopped) {
+  if (!fs::exists(a3rig())) GTEST_SKIP() << a3rig() << " is not built (build the a3rig target)";
+  A3_REQUIRE_SHARED(folder, "alphabench/eval_runs/openai/chatgpt-4o-latest/uav");
+  const fs::path dir = fs::temp_directory_path() / ("a3_generate_interrupt_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path out_root = dir / "runs";
+  const fs::path episodes = out_root / "openai/chatgpt-4o-latest/uav";
+  auto count_files = [&](const std::string& suffix) {
+    std::size_t n = 0;
+    if (!fs::exists(episodes)) return n;
+    for (const auto& e : fs::directory_iterator(episodes)) {
+      const std::string name = e.path().filename().string();
+      n += name.size() >= suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+    }
+    return n;
+  };
+  {
+    CorpusServer server(folder, 0.005, dir);  // ~0.05 s per episode
+    ASSERT_GT(server.port(), 0) << server.errors();
+    const std::vector<std::string> args = {a3rig(), "generate", "--scenarios", folder.string(), "--seeds", "42",
+                                           "--out", out_root.string(), "--llm-base-url", server.base_url(),
+                                           "--llm-model", "openai/chatgpt-4o-latest"};
+    const pid_t pid = spawn(args, dir / "gen.out", dir / "gen.err");
+    ASSERT_GT(pid, 0);
+    for (int i = 0; i < 1500 && count_files(".json") < 3; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    ASSERT_EQ(::kill(pid, SIGINT), 0);
+    EXPECT_EQ(wait_exit(pid, 60.0), 3) << read_file(dir / "gen.err");
+    const std::size_t written = count_files(".json");
+    EXPECT_GE(written, 3u);
+    EXPECT_LT(written, 50u) << "the run was not interrupted";
+    EXPECT_EQ(count_files(".tmp"), 0u);
+    EXPECT_NE(read_file(dir / "gen.err").find("run the same command again to continue"), std::string::npos);
+
+    std::string out, err;
+    ASSERT_EQ(run(std::vector<std::string>(args.begin() + 1, args.end()), dir, out, err), 0) << err;
+    EXPECT_NE(err.find(std::to_string(written) + " kept (" + std::to_string(written) + " valid"), std::string::npos)
+        << err;
+    EXPECT_NE(err.find(std::to_string(50 - written) + " generated"), std::string::npos) << err;
+  }
+  EXPECT_EQ(count_files(".json"), 50u);
+  json generated = score(out_root, dir);
+  json recorded = score(folder, dir);
+  for (const char* column : {"mean", "n", "pillars", "mean_total_tokens", "total_attempt_calls", "alpha3_rel"}) {
+    EXPECT_EQ(generated[column], recorded[column]) << column;
+  }
+  fs::remove_all(dir);
+}
+
 TEST(GenerateEndToEnd, BadUsageExitsWith2AndSaysWhy) {
   if (!fs::exists(a3rig())) GTEST_SKIP() << a3rig() << " is not built (build the a3rig target)";
   const fs::path dir = fs::temp_directory_path() / ("a3_generate_usage_" + std::to_string(::getpid()));
