@@ -14,6 +14,7 @@
 #include "eval/pillars.hpp"
 #include "rigs/cli/command_registry.hpp"
 #include "rigs/cli/signal_stop.hpp"
+#include "rigs/core/node_configs.hpp"
 #include "rigs/core/rig_runner.hpp"
 
 namespace a3::rigs {
@@ -40,6 +41,7 @@ int run(RunArgs& args) {
   }
   if (const char* shared = std::getenv("A3_SHARED_DIR"); shared != nullptr && *shared != '\0') o.shared_dir = shared;
   const Scenario scenario = load_scenario(o.scenario, o.shared_dir);
+  make_agent(o);  // a bad agent, think time or LLM endpoint is a usage error before anything is written
   auto print = [&](const std::string& line) {
     if (!o.quiet) std::fprintf(stderr, "%s\n", line.c_str());
   };
