@@ -1,6 +1,8 @@
 // AgentContext ⇄ JSON.
 #include "agent/llm/context_json.hpp"
 
+#include "agent/mission/mission.hpp"
+
 #include <stdexcept>
 
 #include "agent/llm/json_extract.hpp"
@@ -78,43 +80,7 @@ nlohmann::json shortened_observation(const nlohmann::json& o) {
 
 }  // namespace
 
-nlohmann::json mission_to_json(const Mission& m) {
-  nlohmann::json objectives = nlohmann::json::array();
-  for (const Objective& o : m.objectives) {
-    nlohmann::json j = {{"id", o.id}, {"type", to_string(o.type)}, {"description", o.description}, {"radius_m", o.radius_m}};
-    switch (o.type) {
-      case ObjectiveType::kSurvey:
-      case ObjectiveType::kThermalSearch: {
-        nlohmann::json area = nlohmann::json::array();
-        for (const auto& p : o.area) area.push_back({p.x(), p.y()});
-        j["area"] = area;
-        j["altitude_m"] = o.altitude_m;
-        j["sensor"] = o.sensor;
-        if (o.type == ObjectiveType::kSurvey) j["images_required"] = o.images_required;
-        break;
-      }
-      case ObjectiveType::kImagePoint:
-        j["point"] = {o.point.x(), o.point.y()};
-        j["altitude_m"] = o.altitude_m;
-        j["sensor"] = o.sensor;
-        break;
-      case ObjectiveType::kDelivery:
-        j["point"] = {o.point.x(), o.point.y()};
-        j["drop_altitude_m"] = o.drop_altitude_m;
-        break;
-      case ObjectiveType::kReturnAndLand:
-        break;
-    }
-    objectives.push_back(std::move(j));
-  }
-  return {{"name", m.name},
-          {"description", m.description},
-          {"home", {m.home_W_m.x(), m.home_W_m.y(), m.home_W_m.z()}},
-          {"cruise_altitude_m", m.cruise_altitude_m},
-          {"cruise_speed_mps", m.cruise_speed_mps},
-          {"time_limit_s", m.time_limit_s},
-          {"objectives", objectives}};
-}
+nlohmann::json mission_to_json(const Mission& m) { return mission_brief_json(m); }
 
 Mission mission_from_json(const nlohmann::json& j, const std::string& where) {
   Mission m;

@@ -17,7 +17,7 @@ const char* to_string(ObjectiveType t) {
 nlohmann::json mission_brief_json(const Mission& m) {
   nlohmann::json objectives = nlohmann::json::array();
   for (const Objective& o : m.objectives) {
-    nlohmann::json j = {{"id", o.id}, {"type", to_string(o.type)}, {"description", o.description}};
+    nlohmann::json j = {{"id", o.id}, {"type", to_string(o.type)}, {"description", o.description}, {"radius_m", o.radius_m}};
     switch (o.type) {
       case ObjectiveType::kSurvey:
       case ObjectiveType::kThermalSearch: {
@@ -31,18 +31,15 @@ nlohmann::json mission_brief_json(const Mission& m) {
       }
       case ObjectiveType::kImagePoint:
         j["point"] = {o.point.x(), o.point.y()};
-        j["radius_m"] = o.radius_m;
         j["sensor"] = o.sensor;
         j["altitude_m"] = o.altitude_m;
         break;
       case ObjectiveType::kDelivery:
         j["point"] = {o.point.x(), o.point.y()};
-        j["radius_m"] = o.radius_m;
         j["drop_altitude_m"] = o.drop_altitude_m;
         break;
       case ObjectiveType::kReturnAndLand:
         j["home"] = {m.home_W_m.x(), m.home_W_m.y()};
-        j["radius_m"] = o.radius_m;
         break;
     }
     objectives.push_back(j);
