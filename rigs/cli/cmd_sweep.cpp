@@ -35,7 +35,7 @@ struct SweepArgs {
   double real_time_factor = 1.0;
   std::string shard = "0/1";
   std::string out = "out/sweep";
-  double cell_timeout_s = 900.0;
+  double cell_timeout_s = -1.0;  // negative: 900 s in virtual time, none in real time
   bool rerun = false;
   bool dry_run = false;
   std::string plot_only;
@@ -88,7 +88,7 @@ int run(const SweepArgs& args) {
   child.a3rig_exe = std::string(exe, static_cast<std::size_t>(length));
   child.runtime = args.runtime;
   child.real_time_factor = args.real_time_factor;
-  child.cell_timeout_s = args.cell_timeout_s;
+  child.cell_timeout_s = args.cell_timeout_s >= 0.0 ? args.cell_timeout_s : (args.runtime == "virtual" ? 900.0 : 0.0);
   if (!args.llm_base_url.empty()) child.extra_run_args.insert(child.extra_run_args.end(), {"--llm-base-url", args.llm_base_url});
   if (!args.llm_model.empty()) child.extra_run_args.insert(child.extra_run_args.end(), {"--llm-model", args.llm_model});
   sweep::ChildProcessCellRunner runner(child);
@@ -146,7 +146,9 @@ int run(const SweepArgs& args) {
   }
   for (const auto& row : summary.rows) {
     if (!row.has_episode && row.status.rfind("not_run", 0) != 0) {
-      std::printf("failed:    %s / %s / think %s / %s / seed %llu: %s\n", row.scenario.c_str(), row.agent.c_str(),
+      const bool interrupted = row.status.rfind("stopped", 0) == 0;
+      std::printf("%s %s / %s / think %s / %s / seed %llu: %s\n", interrupted ? "rerun next:" : "failed:   ",
+                  row.scenario.c_str(), row.agent.c_str(),
                   row.think_time.c_str(), row.slice.c_str(), static_cast<unsigned long long>(row.seed),
                   row.status.c_str());
     }
@@ -197,7 +199,7 @@ A3_REGISTER_COMMAND("15-sweep", [](CLI::App& app) {
   cmd->add_option("--out", args->out, "output folder (default out/sweep)");
   cmd->add_option("--cell-timeout", args->cell_timeout_s,
                   "wall seconds one episode may take before it is killed and recorded as failed; 0: no limit "
-                  "(default 900)")
+                  "(default 900 in virtual time, none in real time)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--rerun", args->rerun, "run every cell again, complete or not");
   cmd->add_flag("--dry-run", args->dry_run, "list the cells of this shard (done or to run) and their commands");
