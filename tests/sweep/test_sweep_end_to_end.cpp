@@ -1,7 +1,7 @@
 // A small real sweep: the traffic-conflict scenario with think times 0 and 60 s on one slice and
 // one seed, each cell a child `a3rig run` in virtual time. The slow agent misses the conflict
 // (a separation breach: SP 0.5) and the fast one does not; results.csv, aggregate.csv and the
-// PNG are written, and a resumed sweep runs nothing.
+// PNG are written, and a resumed sweep runs nothing. A run that fails or hangs is recorded.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -61,6 +61,37 @@ TEST(SweepEndToEnd, ASlowAgentBreachesSeparationAndTheFigureIsDrawn) {
   const SweepRunSummary again = run_sweep(grid, options, runner, {}, no_stop);
   EXPECT_EQ(again.counts.skipped, 2u);
   EXPECT_EQ(again.counts.ran, 0u);
+  fs::remove_all(out);
+}
+
+TEST(SweepEndToEnd, ARunThatFailsOrHangsIsRecordedWithItsLog) {
+  const fs::path out = fs::temp_directory_path() / ("a3-sweep-e2e-fail-" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  // A scenario file that does not exist: `a3rig run` exits 2 (bad input) without an episode.
+  const auto grid = expand_grid(make_axes(out.string() + "/missing-scenario.json", "scripted", "0", "URLLC", "1"));
+  ChildProcessOptions child;
+  child.a3rig_exe = A3RIG_EXE;
+  ChildProcessCellRunner runner(child);
+  SweepRunOptions options;
+  options.out_dir = out;
+  const std::atomic<bool> no_stop{false};
+  const SweepRunSummary failed = run_sweep(grid, options, runner, {}, no_stop);
+  EXPECT_EQ(failed.counts.failed, 1u);
+  ASSERT_EQ(failed.rows.size(), 1u);
+  EXPECT_FALSE(failed.rows[0].has_episode);
+  EXPECT_NE(failed.rows[0].status.find("exited with status 2"), std::string::npos) << failed.rows[0].status;
+  std::ifstream log(cell_dir(out, grid[0]) / "run.log");
+  const std::string log_text((std::istreambuf_iterator<char>(log)), {});
+  EXPECT_NE(log_text.find("missing-scenario.json"), std::string::npos) << log_text;
+
+  // A run that outlasts its wall-clock limit is ended and recorded as timed out.
+  const auto slow = expand_grid(make_axes("traffic-conflict", "scripted", "60", "URLLC", "1"));
+  child.cell_timeout_s = 0.3;
+  ChildProcessCellRunner impatient(child);
+  options.rerun_complete = true;
+  const SweepRunSummary timed_out = run_sweep(slow, options, impatient, {}, no_stop);
+  ASSERT_EQ(timed_out.rows.size(), 1u);
+  EXPECT_NE(timed_out.rows[0].status.find("timed out after 0.3 s"), std::string::npos) << timed_out.rows[0].status;
   fs::remove_all(out);
 }
 
