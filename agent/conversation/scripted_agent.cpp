@@ -126,6 +126,9 @@ void ScriptedAgent::plan(const AgentContext& c) {
         s.text = "Flying to " + o.id + " to image it.";
         steps_.push_back(s);
         s = Step{"capture_target", "Capturing " + o.id + ".", {}};
+        s.needs_arrival = true;
+        s.at = o.point;
+        s.arrive_within_m = std::max(10.0, 2.0 * o.radius_m);
         if (o.sensor != "rgb") s.actions.push_back(mcp("activate_sensor", {{"sensor", o.sensor}}));
         s.actions.push_back(mcp("capture_image", {{"sensor", o.sensor}}));
         break;
@@ -145,6 +148,14 @@ void ScriptedAgent::plan(const AgentContext& c) {
   steps_.push_back({"confirm_landing", "Confirming the landing.", {mcp("read_telemetry")}});
 }
 
+bool ScriptedAgent::arrived(const AgentContext& c, const Step& step) {
+  if (!step.needs_arrival) return true;
+  const nlohmann::json& t = c.last_telemetry;
+  if (!t.is_object() || !t.contains("pose") || !t["pose"].is_object()) return false;
+  const Eigen::Vector2d p(number(t["pose"], "x", 1e9), number(t["pose"], "y", 1e9));
+  return (p - step.at).norm() <= step.arrive_within_m;
+}
+
 AgentDecision ScriptedAgent::decide(const AgentContext& c) {
   if (!planned_) {
     plan(c);
@@ -156,6 +167,9 @@ AgentDecision ScriptedAgent::decide(const AgentContext& c) {
   if (still_flying_a_route(c) && agent_turns_left > static_cast<int>(steps_.size())) {
     // The last leg is still being flown: check on it rather than start the next one.
     step = {"monitor_progress", "The current leg is still in progress; monitoring.", {mcp("read_telemetry")}};
+  } else if (!steps_.empty() && !arrived(c, steps_.front()) && agent_turns_left > static_cast<int>(steps_.size())) {
+    // Not at the place of the next step yet (as far as the telemetry says): check on the way.
+    step = {"monitor_progress", "Still on the way to the target; checking position.", {mcp("read_telemetry")}};
   } else if (steps_.empty()) {
     step = {"status_report", "Reporting status.", {mcp("read_telemetry")}};
   } else if (static_cast<int>(steps_.size()) > agent_turns_left && steps_.size() >= 3) {

@@ -5,8 +5,12 @@
 // lawnmowers, image points, deliveries), return and landing — and adapts every turn to the
 // network: on a hard link it asks for URLLC for control and keeps images on board until the
 // link is good again, then hands them over. When the supervisor reports traffic close by, it
-// asks the swarm for separation (A2A collision_avoidance) before anything else.
+// asks the swarm for separation (A2A collision_avoidance) before anything else. A capture at an
+// image point waits until telemetry shows the vehicle there (a supervisor's turn about a
+// degraded link can come while it is still on the way).
 #pragma once
+
+#include <Eigen/Core>
 
 #include <deque>
 #include <string>
@@ -27,10 +31,16 @@ class ScriptedAgent final : public Agent {
     std::string intent;
     std::string text;
     std::vector<nlohmann::json> actions;
+    // A step done at a place (capturing an image point): it waits until the latest telemetry
+    // puts the vehicle within arrive_within_m of it (horizontally).
+    bool needs_arrival = false;
+    Eigen::Vector2d at = Eigen::Vector2d::Zero();
+    double arrive_within_m = 0.0;
   };
   void plan(const AgentContext& context);
   std::vector<nlohmann::json> route_from_path_plan(const AgentContext& context) const;
   bool still_flying_a_route(const AgentContext& context) const;
+  static bool arrived(const AgentContext& context, const Step& step);
 
   bool planned_ = false;
   std::deque<Step> steps_;

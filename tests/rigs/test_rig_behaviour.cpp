@@ -160,5 +160,29 @@ TEST(RigBehaviour, APublicCorpusEpisodeReplaysOnItsOwnInitialState) {
   std::filesystem::remove_all(o.out_dir);
 }
 
+TEST(RigBehaviour, TheScriptedAgentCapturesAnImagePointOnlyOnceThere) {
+  // On eMBB the link degrades while the vehicle is on its way to the tower, and the supervisor
+  // speaks up about it: the agent must not take that turn as "arrived" and capture early.
+  for (const uint64_t seed : {1u, 2u}) {
+    RunOptions o = a3::test::virtual_run("traffic-conflict", "arrival-" + std::to_string(seed));
+    o.slice = "eMBB";
+    o.seed = seed;
+    const RunResult r = a3::test::run(o);
+    EXPECT_TRUE(r.episode["success"].get<bool>()) << "seed " << seed << ": " << r.episode["_rig"]["objectives"].dump();
+    int captures = 0;
+    for (const auto& t : r.episode["dialogue"]) {
+      for (const auto& ob : t["obs"]) {
+        if (ob.value("tool", "") != "capture_image") continue;
+        ++captures;
+        const auto& pose = ob["result"]["pose"];
+        EXPECT_NEAR(pose["x"].get<double>(), 500.0, 20.0) << "seed " << seed;
+        EXPECT_NEAR(pose["y"].get<double>(), 300.0, 20.0) << "seed " << seed;
+      }
+    }
+    EXPECT_EQ(captures, 1) << "seed " << seed;
+    std::filesystem::remove_all(o.out_dir);
+  }
+}
+
 }  // namespace
 }  // namespace a3::rigs
