@@ -26,7 +26,7 @@ std::string progress_line(const ProgressCounts& c, int bar_width) {
   std::string line = "[" + std::string(filled, '#') + std::string(bar_width - filled, '-') + "]";
   const std::size_t run = c.ran + c.failed;
   const double rate = run > 0 && c.elapsed_s > 0.0 ? static_cast<double>(run) / c.elapsed_s : 0.0;
-  const std::size_t remaining = c.total - done;
+  const std::size_t run_remaining = c.to_run > run ? c.to_run - run : 0;
   char buffer[200];
   std::snprintf(buffer, sizeof buffer, " %zu/%zu %3d%%  ran %zu  skipped %zu  failed %zu", done, c.total,
                 static_cast<int>(std::floor(fraction * 100.0)), c.ran, c.skipped, c.failed);
@@ -35,10 +35,12 @@ std::string progress_line(const ProgressCounts& c, int bar_width) {
     std::snprintf(buffer, sizeof buffer, "  %.2f episodes/s", rate);
     line += buffer;
   }
-  if (remaining == 0) {
+  if (done == c.total) {
     line += "  done in " + format_duration(c.elapsed_s);
+  } else if (run_remaining == 0) {
+    line += "  ETA 0s";
   } else {
-    line += "  ETA " + (rate > 0.0 ? format_duration(static_cast<double>(remaining) / rate) : std::string("?"));
+    line += "  ETA " + (rate > 0.0 ? format_duration(static_cast<double>(run_remaining) / rate) : std::string("?"));
   }
   return line;
 }

@@ -10,6 +10,7 @@ namespace a3::rigs::sweep {
 
 struct ProgressCounts {
   std::size_t total = 0;    // cells of this shard
+  std::size_t to_run = 0;   // of which incomplete when the sweep started (the ETA's work)
   std::size_t ran = 0;      // episodes run to completion
   std::size_t skipped = 0;  // complete already (resumed)
   std::size_t failed = 0;   // run, without a complete episode
@@ -19,7 +20,7 @@ struct ProgressCounts {
 // "1h02m", "3m07s", "12s".
 std::string format_duration(double seconds);
 // "[#####---------------]  25/100  25%  ran 20  skipped 5  failed 0  1.3 episodes/s  ETA 57s";
-// the ETA counts only cells still to run, at the rate of those run so far.
+// the ETA counts only the cells still to run (to_run - ran - failed), at the rate of those run so far.
 std::string progress_line(const ProgressCounts& counts, int bar_width = 24);
 
 class ProgressBar {

@@ -26,6 +26,13 @@ SweepRunSummary run_sweep(const std::vector<SweepCell>& grid, const SweepRunOpti
   summary.counts.total = cells.size();
   std::filesystem::create_directories(options.out_dir);
 
+  // Which cells are complete already, so that the ETA counts only the work left.
+  std::vector<char> complete(cells.size(), 0);
+  for (std::size_t i = 0; i < cells.size() && !options.rerun_complete; ++i) {
+    complete[i] = check_cell(cell_dir(options.out_dir, cells[i]), cells[i]).complete;
+  }
+  summary.counts.to_run = static_cast<std::size_t>(std::count(complete.begin(), complete.end(), 0));
+
   const auto start = std::chrono::steady_clock::now();
   std::mutex mutex;
   std::atomic<std::size_t> next{0};
@@ -46,18 +53,18 @@ SweepRunSummary run_sweep(const std::vector<SweepCell>& grid, const SweepRunOpti
       const SweepCell& cell = cells[i];
       const auto dir = cell_dir(options.out_dir, cell);
       const std::string relative = (cell_dir("", cell) / "episode.json").string();
-      if (stop.load()) {
-        summary.rows[i] = row_without_episode(cell, "not_run: the sweep was stopped");
-        record(Outcome::kNotRun);
-        return;
-      }
-      if (!options.rerun_complete) {
+      if (complete[i]) {
         const CellCheck done = check_cell(dir, cell);
         if (done.complete) {
           summary.rows[i] = scorer.row(cell, done.episode, relative);
           record(Outcome::kSkipped);
           return;
         }
+      }
+      if (stop.load()) {
+        summary.rows[i] = row_without_episode(cell, "not_run: the sweep was stopped");
+        record(Outcome::kNotRun);
+        return;
       }
       std::filesystem::remove(dir / "episode.json");  // a stale file must not pass for this run's
       const CellRunOutcome outcome = runner.run(cell, dir, stop);

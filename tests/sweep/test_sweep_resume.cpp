@@ -111,6 +111,7 @@ TEST(SweepResume, ASecondRunSkipsCompleteCellsAndRerunsIncompleteOnes) {
   fs::copy_file(cell_dir(dir.path, grid[0]) / "episode.json", cell_dir(dir.path, grid[9]) / "episode.json",
                 fs::copy_options::overwrite_existing);
   const SweepRunSummary third = run_sweep(grid, options, runner, {}, no_stop);
+  EXPECT_EQ(third.counts.to_run, 3u);
   EXPECT_EQ(runner.ran(), (std::vector<std::size_t>{3, 5, 9}));
   EXPECT_EQ(third.counts.ran, 3u);
   EXPECT_EQ(third.counts.skipped, grid.size() - 3);
@@ -155,11 +156,23 @@ TEST(SweepResume, AStoppedSweepLeavesTheRestNotRun) {
   SweepRunOptions options;
   options.out_dir = dir.path;
   const std::atomic<bool> stopped{true};
+  const std::atomic<bool> no_stop{false};
+  options.shard = parse_shard("0/2");
+  run_sweep(grid, options, runner, {}, no_stop);  // half the cells complete
+  runner.ran();
+  options.shard = Shard{};
   const SweepRunSummary summary = run_sweep(grid, options, runner, {}, stopped);
   EXPECT_TRUE(summary.stopped);
   EXPECT_TRUE(runner.ran().empty());
-  for (const auto& row : read_results_csv(dir.path / "results.csv")) {
-    EXPECT_EQ(row.status, "not_run: the sweep was stopped");
+  EXPECT_EQ(summary.counts.skipped, grid.size() / 2);  // complete cells keep their rows
+  const auto rows = read_results_csv(dir.path / "results.csv");
+  ASSERT_EQ(rows.size(), grid.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (i % 2 == 0) {
+      EXPECT_EQ(rows[i].status, "completed");
+    } else {
+      EXPECT_EQ(rows[i].status, "not_run: the sweep was stopped");
+    }
   }
 }
 
@@ -208,6 +221,7 @@ TEST(SweepProgress, TheLineShowsCountsRateAndEta) {
   c.total = 100;
   c.ran = 20;
   c.skipped = 5;
+  c.to_run = 95;
   c.elapsed_s = 10.0;  // 2 episodes/s; 75 to go
   const std::string line = progress_line(c, 20);
   EXPECT_EQ(line, "[#####---------------] 25/100  25%  ran 20  skipped 5  failed 0  2.00 episodes/s  ETA 38s");
@@ -217,7 +231,14 @@ TEST(SweepProgress, TheLineShowsCountsRateAndEta) {
   EXPECT_EQ(format_duration(187.0), "3m07s");
   c.ran = 0;
   c.skipped = 10;
+  c.to_run = 90;
   EXPECT_NE(progress_line(c, 20).find("ETA ?"), std::string::npos);
+  // Resumed: 90 of 100 complete at the start; 5 of the other 10 run in 10 s.
+  c.skipped = 80;
+  c.ran = 5;
+  c.to_run = 10;
+  c.elapsed_s = 10.0;
+  EXPECT_NE(progress_line(c, 20).find("0.50 episodes/s  ETA 10s"), std::string::npos) << progress_line(c, 20);
 }
 
 }  // namespace
