@@ -148,6 +148,21 @@ void ScriptedAgent::plan(const AgentContext& c) {
   steps_.push_back({"confirm_landing", "Confirming the landing.", {mcp("read_telemetry")}});
 }
 
+bool ScriptedAgent::last_leg_done(const AgentContext& c) const {
+  if (leg_turn_index_ < 0) return true;
+  const auto& turns = *c.dialogue;
+  for (int i = static_cast<int>(turns.size()) - 1; i > leg_turn_index_; --i) {
+    for (auto o = turns[i].obs.rbegin(); o != turns[i].obs.rend(); ++o) {
+      if (o->is_object() && o->value("tool", "") == "read_telemetry" && o->contains("result") &&
+          (*o)["result"].is_object()) {
+        const std::string mode = (*o)["result"].value("mode", "");
+        return mode != "goto" && mode != "takeoff";
+      }
+    }
+  }
+  return false;
+}
+
 bool ScriptedAgent::arrived(const AgentContext& c, const Step& step) {
   if (!step.needs_arrival) return true;
   const nlohmann::json& t = c.last_telemetry;
@@ -167,9 +182,10 @@ AgentDecision ScriptedAgent::decide(const AgentContext& c) {
   if (still_flying_a_route(c) && agent_turns_left > static_cast<int>(steps_.size())) {
     // The last leg is still being flown: check on it rather than start the next one.
     step = {"monitor_progress", "The current leg is still in progress; monitoring.", {mcp("read_telemetry")}};
-  } else if (!steps_.empty() && !arrived(c, steps_.front()) && agent_turns_left > static_cast<int>(steps_.size())) {
+  } else if (!steps_.empty() && (!last_leg_done(c) || !arrived(c, steps_.front())) &&
+             agent_turns_left > static_cast<int>(steps_.size())) {
     // Not at the place of the next step yet (as far as the telemetry says): check on the way.
-    step = {"monitor_progress", "Still on the way to the target; checking position.", {mcp("read_telemetry")}};
+    step = {"monitor_progress", "The last leg is not confirmed done; checking position.", {mcp("read_telemetry")}};
   } else if (steps_.empty()) {
     step = {"status_report", "Reporting status.", {mcp("read_telemetry")}};
   } else if (static_cast<int>(steps_.size()) > agent_turns_left && steps_.size() >= 3) {
@@ -192,22 +208,14 @@ AgentDecision ScriptedAgent::decide(const AgentContext& c) {
     auto route = route_from_path_plan(c);
     if (!route.empty() && !detour_flown_ && (name == "set_waypoint" || name == "navigate_to")) {
       detour_flown_ = true;
-      detour_ = route;
       if (name == "set_waypoint") {
         route.back() = {a["args"]["x"], a["args"]["y"], a["args"]["z"]};
       }
       actions.push_back(mcp("navigate_to", {{"waypoints", route}}));
       continue;
     }
-    // Going home past a no-fly zone: fly the detour backwards, then land at home.
-    if (name == "return_to_home" && !detour_.empty()) {
-      std::vector<nlohmann::json> back(detour_.rbegin(), detour_.rend());
-      const Mission& m = *c.mission;
-      back.push_back({m.home_W_m.x(), m.home_W_m.y(), m.cruise_altitude_m});
-      actions.push_back(mcp("navigate_to", {{"waypoints", back}}));
-      steps_.push_front({"land_at_home", "Back over the launch point: landing.", {mcp("land")}});
-      continue;
-    }
+    // Going home past a no-fly zone needs nothing special: return_to_home plans its own detour
+    // on the vehicle and lands at home.
     actions.push_back(a);
   }
   // Traffic reported close by the supervisor: negotiate separation first.
@@ -233,6 +241,12 @@ AgentDecision ScriptedAgent::decide(const AgentContext& c) {
   if (images_held_ && !slow && !hard) {
     adapted.push_back(a2a("handover_data", "ground_station", {{"items", nlohmann::json::array({"held_images"})}}));
     images_held_ = false;
+  }
+  for (const auto& a : adapted) {
+    const std::string name = a.value("name", "");
+    if (name == "takeoff" || name == "set_waypoint" || name == "navigate_to" || name == "execute_maneuver") {
+      leg_turn_index_ = static_cast<int>(c.dialogue->size());
+    }
   }
   d.intent = step.intent;
   d.text = step.text;

@@ -40,13 +40,17 @@ class ScriptedAgent final : public Agent {
   void plan(const AgentContext& context);
   std::vector<nlohmann::json> route_from_path_plan(const AgentContext& context) const;
   bool still_flying_a_route(const AgentContext& context) const;
+  // True when telemetry read after the last motion leg was issued shows that leg finished (no
+  // leg issued: true). A supervisor's turn in between (a degraded link, a status request
+  // without telemetry) is not evidence that the vehicle got there.
+  bool last_leg_done(const AgentContext& context) const;
   static bool arrived(const AgentContext& context, const Step& step);
 
   bool planned_ = false;
   std::deque<Step> steps_;
   bool images_held_ = false;  // captures kept on board while the link was poor
   bool detour_flown_ = false;  // the ground station's route has been used
-  std::vector<nlohmann::json> detour_;  // that route, to fly back along
+  int leg_turn_index_ = -1;   // dialogue index of the turn that issued the last motion leg
 };
 
 // The SPEC §2 "hard" test on an n_t object.

@@ -160,26 +160,39 @@ TEST(RigBehaviour, APublicCorpusEpisodeReplaysOnItsOwnInitialState) {
   std::filesystem::remove_all(o.out_dir);
 }
 
-TEST(RigBehaviour, TheScriptedAgentCapturesAnImagePointOnlyOnceThere) {
-  // On eMBB the link degrades while the vehicle is on its way to the tower, and the supervisor
-  // speaks up about it: the agent must not take that turn as "arrived" and capture early.
-  for (const uint64_t seed : {1u, 2u}) {
-    RunOptions o = a3::test::virtual_run("traffic-conflict", "arrival-" + std::to_string(seed));
-    o.slice = "eMBB";
-    o.seed = seed;
+// Runs where a supervisor's turn came while a leg was being flown (a degraded link on eMBB),
+// or where the way home skirts a no-fly zone: the scripted agent must not take such a turn as
+// "the leg is done" (it once captured 400 m short of the tower, went home before surveying,
+// and landed 200 m from home on its own detour back).
+TEST(RigBehaviour, TheScriptedAgentFinishesEachLegBeforeTheNext) {
+  struct Case {
+    std::string scenario, slice;
+    uint64_t seed;
+  };
+  for (const Case& k : std::vector<Case>{{"traffic-conflict", "eMBB", 1},
+                                         {"traffic-conflict", "eMBB", 2},
+                                         {"survey-field", "eMBB", 1},
+                                         {"nfz-detour", "URLLC", 2}}) {
+    const std::string what = k.scenario + " on " + k.slice + ", seed " + std::to_string(k.seed);
+    RunOptions o = a3::test::virtual_run(k.scenario, "legs-" + k.scenario + "-" + std::to_string(k.seed));
+    o.slice = k.slice;
+    o.seed = k.seed;
     const RunResult r = a3::test::run(o);
-    EXPECT_TRUE(r.episode["success"].get<bool>()) << "seed " << seed << ": " << r.episode["_rig"]["objectives"].dump();
-    int captures = 0;
-    for (const auto& t : r.episode["dialogue"]) {
-      for (const auto& ob : t["obs"]) {
-        if (ob.value("tool", "") != "capture_image") continue;
-        ++captures;
-        const auto& pose = ob["result"]["pose"];
-        EXPECT_NEAR(pose["x"].get<double>(), 500.0, 20.0) << "seed " << seed;
-        EXPECT_NEAR(pose["y"].get<double>(), 300.0, 20.0) << "seed " << seed;
+    EXPECT_EQ(r.status, "completed") << what;
+    EXPECT_TRUE(r.episode["success"].get<bool>()) << what << ": " << r.episode["_rig"]["objectives"].dump();
+    if (k.scenario == "traffic-conflict") {
+      int captures = 0;
+      for (const auto& t : r.episode["dialogue"]) {
+        for (const auto& ob : t["obs"]) {
+          if (ob.value("tool", "") != "capture_image") continue;
+          ++captures;
+          const auto& pose = ob["result"]["pose"];
+          EXPECT_NEAR(pose["x"].get<double>(), 500.0, 20.0) << what;  // the tower
+          EXPECT_NEAR(pose["y"].get<double>(), 300.0, 20.0) << what;
+        }
       }
+      EXPECT_EQ(captures, 1) << what;
     }
-    EXPECT_EQ(captures, 1) << "seed " << seed;
     std::filesystem::remove_all(o.out_dir);
   }
 }
