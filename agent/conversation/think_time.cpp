@@ -1,6 +1,7 @@
 // Think-time distributions and the per-model latency profiles.
 #include "agent/conversation/think_time.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -43,6 +44,17 @@ const std::vector<ModelLatencyProfile>& model_latency_profiles() {
   return kProfiles;
 }
 
+const ModelLatencyProfile* find_model_latency_profile(const std::string& name) {
+  auto lower = [](std::string x) {
+    for (char& c : x) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return x;
+  };
+  for (const auto& p : model_latency_profiles()) {
+    if (lower(p.name) == lower(name)) return &p;
+  }
+  return nullptr;
+}
+
 ThinkTime ThinkTime::parse(const std::string& spec) {
   ThinkTime t;
   t.spec_ = spec;
@@ -50,14 +62,12 @@ ThinkTime ThinkTime::parse(const std::string& spec) {
   const std::string kind = colon == std::string::npos ? "fixed" : spec.substr(0, colon);
   const std::string args = colon == std::string::npos ? spec : spec.substr(colon + 1);
   if (kind == "model") {
-    for (const auto& p : model_latency_profiles()) {
-      if (p.name == args) {
-        t.kind_ = Kind::kLogNormal;
-        // lognormal with this mean: median = mean / exp(σ²/2)
-        t.a_ = p.mean_generation_time_s / kAgentTurnsPerEpisode / std::exp(kModelSigma * kModelSigma / 2.0);
-        t.b_ = kModelSigma;
-        return t;
-      }
+    if (const ModelLatencyProfile* p = find_model_latency_profile(args)) {
+      t.kind_ = Kind::kLogNormal;
+      // lognormal with this mean: median = mean / exp(σ²/2)
+      t.a_ = p->mean_generation_time_s / kAgentTurnsPerEpisode / std::exp(kModelSigma * kModelSigma / 2.0);
+      t.b_ = kModelSigma;
+      return t;
     }
     std::string names;
     for (const auto& p : model_latency_profiles()) names += (names.empty() ? "" : ", ") + p.name;

@@ -42,6 +42,8 @@ struct ModelLatencyProfile {
 };
 // The sixteen models of the paper's Table (SPEC §8), plus ChatGPT-4o.
 const std::vector<ModelLatencyProfile>& model_latency_profiles();
+// The profile named `name`, ignoring case ("claude-haiku-4.5" is "Claude-Haiku-4.5"); null if none.
+const ModelLatencyProfile* find_model_latency_profile(const std::string& name);
 
 // Adds think time to another agent's decisions (on top of its own latency).
 class ThinkTimeAgent final : public Agent {

@@ -77,8 +77,8 @@ LatencyModel LatencyModel::parse(const std::string& spec, double time_scale) {
       const std::string name = spec.substr(14);
       m.distribution_ = ThinkTime::parse("model:" + name);
       // ThinkTime spreads the episode's mean over the turns; a request here is the whole episode.
-      for (const auto& p : model_latency_profiles()) {
-        if (p.name == name) m.distribution_factor_ = p.mean_generation_time_s / m.distribution_->mean_s();
+      if (const auto* p = find_model_latency_profile(name)) {
+        m.distribution_factor_ = p->mean_generation_time_s / m.distribution_->mean_s();
       }
     } else {
       m.distribution_ = ThinkTime::parse(spec);

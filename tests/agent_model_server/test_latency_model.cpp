@@ -60,6 +60,14 @@ TEST(LatencyModel, ModelProfileIsPerTurnAndModelEpisodeIsPerEpisode) {
   EXPECT_NEAR(sum_s / n, episode_mean_s, 0.03 * episode_mean_s);
 }
 
+TEST(LatencyModel, ModelNamesIgnoreCase) {
+  const double turn_mean_s = a3::agent::ThinkTime::parse("model:Claude-Haiku-4.5").mean_s();
+  EXPECT_GT(turn_mean_s, 0.0);
+  EXPECT_DOUBLE_EQ(a3::agent::ThinkTime::parse("model:claude-haiku-4.5").mean_s(), turn_mean_s);
+  EXPECT_NEAR(*LatencyModel::parse("model-episode:gpt-4.1-mini").mean_s(), profile_mean_s("GPT-4.1-mini"), 1e-9);
+  EXPECT_THROW(a3::agent::ThinkTime::parse("model:claude-haiku"), std::invalid_argument);
+}
+
 TEST(LatencyModel, SameSeedSameDraws) {
   const LatencyModel m = LatencyModel::parse("lognormal:2,0.5");
   Rng a(42), b(42), c(43);
