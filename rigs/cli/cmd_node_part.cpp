@@ -19,6 +19,7 @@
 #include "rigs/cli/signal_stop.hpp"
 #include "rigs/core/node_configs.hpp"
 #include "rigs/core/rig_nodes.hpp"
+#include "rigs/core/shared_dir.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -99,7 +100,10 @@ A3_REGISTER_COMMAND("90-node-part", [](CLI::App& app) {
   cmd->add_option("--can", o.can, "CAN bus between bridge and fc: userspace:NAME, vcan0, can0, ...");
   cmd->add_option("--integrator", o.integrator, "cvode (default) or ode")->check(CLI::IsMember({"cvode", "ode"}));
   cmd->add_option("--dynamics-rate-hz", o.dynamics_rate_hz, "dynamics step rate (default 250)")->check(CLI::PositiveNumber);
-  cmd->add_option("--shared-dir", o.shared_dir, "the ../shared folder (alphabench scenarios, traces)");
+  o.shared_dir = default_shared_dir();
+  cmd->add_option("--shared-dir", o.shared_dir,
+                  "the ../shared folder (alphabench scenarios, traces; default $A3_SHARED_DIR, else ../shared here "
+                  "or beside the repository)");
   cmd->add_flag("--start-now", args->start_now, "start at once instead of waiting for 'go' on stdin");
   cmd->callback([args] { command_exit_status() = run_part(*args); });
 });

@@ -16,6 +16,7 @@
 #include "rigs/cli/signal_stop.hpp"
 #include "rigs/core/node_configs.hpp"
 #include "rigs/core/rig_runner.hpp"
+#include "rigs/core/shared_dir.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -39,7 +40,7 @@ int run(RunArgs& args) {
     throw std::invalid_argument("--processes: runs in real time only (virtual time is one process by design); drop "
                                 "--runtime virtual or --processes");
   }
-  if (const char* shared = std::getenv("A3_SHARED_DIR"); shared != nullptr && *shared != '\0') o.shared_dir = shared;
+  o.shared_dir = default_shared_dir();
   const Scenario scenario = load_scenario(o.scenario, o.shared_dir);
   make_agent(o);  // a bad agent, think time or LLM endpoint is a usage error before anything is written
   auto print = [&](const std::string& line) {

@@ -16,6 +16,7 @@
 #include "rigs/cli/signal_stop.hpp"
 #include "rigs/core/builtin_scenarios.hpp"
 #include "rigs/core/scenario.hpp"
+#include "rigs/core/shared_dir.hpp"
 #include "rigs/sweep/cell_result.hpp"
 #include "rigs/sweep/cell_runner.hpp"
 #include "rigs/sweep/sweep_report.hpp"
@@ -69,8 +70,7 @@ int run(const SweepArgs& args) {
   const sweep::SweepAxes axes = sweep::make_axes(args.scenarios.empty() ? all_builtin_scenarios() : args.scenarios,
                                                  args.agents, args.think_times, args.slices, args.seeds);
   const sweep::Shard shard = sweep::parse_shard(args.shard);
-  std::filesystem::path shared_dir = "../shared";
-  if (const char* shared = std::getenv("A3_SHARED_DIR"); shared != nullptr && *shared != '\0') shared_dir = shared;
+  const std::filesystem::path shared_dir = default_shared_dir();
   for (const auto& scenario : axes.scenarios) {
     try {
       (void)load_scenario(scenario, shared_dir);

@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <cstdio>
 
 #include "agent/conversation/replay_agent.hpp"
 #include "agent/conversation/scripted_agent.hpp"
@@ -42,10 +43,12 @@ RigConfigs make_rig_configs(const Scenario& s, const RunOptions& o) {
   c.dynamics.seed = o.seed;
   const dynamics::QuadrotorModel model(c.dynamics.params);
   if (model.hover_throttle() > 0.85) {
-    throw common::InputError(where + ": airframe '" + s.airframe + "' cannot carry " +
-                             std::to_string(c.dynamics.params.payload_mass_kg) +
-                             " kg of payload with a control margin (hover throttle " +
-                             std::to_string(model.hover_throttle()) + "); use \"airframe\": \"heavy-lift\"");
+    char numbers[128];
+    std::snprintf(numbers, sizeof numbers, "%.1f kg of payload with a control margin (hover throttle %.2f, at most 0.85)",
+                  c.dynamics.params.payload_mass_kg, model.hover_throttle());
+    throw common::InputError(where + ": airframe '" + s.airframe + "' cannot carry " + numbers +
+                             (s.airframe == "heavy-lift" ? std::string("; no built-in airframe can: lighten the payload")
+                                                         : std::string("; use \"airframe\": \"heavy-lift\"")));
   }
 
   // Bridge and flight controller.
