@@ -1,18 +1,18 @@
 #!/usr/bin/env bash
-# The main job: installs the Debian packages, builds, and scores the α³-Bench public episodes
-# in ../shared/alphabench (or $A3_SHARED_DIR/alphabench), printing the leaderboard, the
-# per-episode rows and the figures into out/. Extra arguments go to `a3rig score`.
+# The main job: installs the Debian packages, builds, and flies one conversational mission in
+# real time with the built-in (scripted) agent: `a3rig run` on the survey-field scenario
+# (about 4 minutes of wall time), writing out/run/episode.json (α³-Bench format), the LCM log
+# and a trajectory plot, and printing the score. Extra arguments go to `a3rig run`, e.g.
+#   scripts/main.sh --scenario traffic-conflict --think-time 30 --rtf 4
+# As root it routes LCM's multicast group over loopback first (the rig's nodes talk LCM UDP).
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 install=()
 [ "$(id -u)" = 0 ] || install=(--no-install)
 "$repo/scripts/setup.sh" "${install[@]}"
-shared=${A3_SHARED_DIR:-$repo/../shared}
-corpus="$shared/alphabench/eval_runs"
-if [ ! -d "$corpus" ]; then
-  echo "main.sh: $corpus not found: get the α³-Bench public release (repository maferrag/AlphaBench," >&2
-  echo "main.sh: folder Results_Evaluation/eval_runs) and put it there, or set A3_SHARED_DIR" >&2
-  exit 2
+if [ "$(id -u)" = 0 ]; then
+  "$repo/scripts/lcm-loopback.sh"
 fi
+export A3_SHARED_DIR=${A3_SHARED_DIR:-$repo/../shared}
 mkdir -p "$repo/out"
-exec "$repo/build/a3rig" score "$corpus" --per-episode "$repo/out/episodes.csv" --plots "$repo/out/figures" "$@"
+exec "$repo/build/a3rig" run --scenario survey-field --out "$repo/out/run" "$@"
