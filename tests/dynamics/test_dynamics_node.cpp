@@ -172,24 +172,38 @@ TEST(DynamicsNode, VirtualRuntimeIsDeterministicForASeed) {
   EXPECT_GT(std::abs(a.p_W_m[0]), 1.0);  // the wind pushed it
 }
 
-// The same 20 s open-loop flight in virtual time and in real time (real-time factor 5, nodes in
-// their own threads over LCM UDP multicast on a port of this process's own: on the shared
-// default port another test's actuator commands once flew this vehicle 15 m off). Commands are published half-way between the
-// dynamics steps, so both runtimes apply each one in the same step: the trajectories agree to
-// within 1 cm and 0.1° unless a command is delayed by more than 1 ms of wall time (then by one
-// step, well inside the stated tolerance of 10 cm and 1°).
+// The same 20 s command sequence in virtual time and in real time (real-time factor 3, nodes in
+// their own threads over LCM UDP multicast on a port of this process's own): hover, a climb, a
+// slow descent, yaw one way and back (the diagonal rotor pairs against each other), a climb,
+// hover. Commands are published half-way between the dynamics steps, so both runtimes apply each
+// in the same step unless the machine delays one by more than half a step of wall time; then
+// it lands a step or more late. Only the 6 changes of command matter, and vertical and yaw
+// motion are stable, so a late change moves the vehicle millimetres (the 1.7 mm seen on an idle
+// machine), not metres. Stated tolerance: 0.5 m and 2° — a loaded CI machine delaying a change by
+// 20 ms of wall time stays inside it; a runtime applying the wrong commands does not. (A free
+// roll/pitch manoeuvre, used before, diverges from one late step: 65–88 m on a loaded machine.)
+// The stale-command timeout is raised to 5 s so a starved script thread cannot spin the motors down.
 TEST(DynamicsNode, VirtualAndRealTimeGiveTheSameTrajectory) {
   const QuadrotorModel model(default_vehicle_params());
   auto throttle = [&](double t) {
-    const RotorSpeeds w = a3::test::manoeuvre_command(model, t - 1.0);
-    std::array<double, 4> out;
-    for (int i = 0; i < 4; ++i) out[i] = w[i] / model.params().rotor.max_speed_radps;
-    return out;
+    const double hover = model.hover_speed_radps() / model.params().rotor.max_speed_radps;
+    auto all = [&](double f) { return std::array<double, 4>{hover * f, hover * f, hover * f, hover * f}; };
+    // kSpin: rotors 0 and 1 turn one way, 2 and 3 the other (diagonal pairs): pure yaw torque.
+    auto yaw = [&](double f) { return std::array<double, 4>{hover * f, hover * f, hover / f, hover / f}; };
+    if (t < 1.0) return all(1.0);
+    if (t < 4.0) return all(1.04);
+    if (t < 7.0) return all(0.98);
+    if (t < 10.0) return yaw(1.03);
+    if (t < 13.0) return yaw(1.0 / 1.03);
+    if (t < 16.0) return all(1.03);
+    return all(1.0);
   };
   constexpr int64_t kEnd_us = 20'000'000;
 
+  DynamicsNodeConfig config = hovering_config(60.0);
+  config.command_timeout_s = 5.0;
   common::VirtualRuntime rt;
-  DynamicsNode v_dyn(hovering_config(60.0));
+  DynamicsNode v_dyn(config);
   ActuatorScriptNode v_script(ActuatorScriptNode::ThrottleFn{throttle});
   StateRecorder v_rec;
   rt.add(v_rec);
@@ -206,8 +220,8 @@ TEST(DynamicsNode, VirtualAndRealTimeGiveTheSameTrajectory) {
     if (require != nullptr && std::string(require) == "1") FAIL() << e.what();
     GTEST_SKIP() << "LCM UDP multicast unavailable (" << e.what() << "); run scripts/lcm-loopback.sh as root";
   }
-  const common::WallClock clock(5.0);
-  DynamicsNode r_dyn(hovering_config(60.0));
+  const common::WallClock clock(3.0);
+  DynamicsNode r_dyn(config);
   ActuatorScriptNode r_script(ActuatorScriptNode::ThrottleFn{throttle});
   StateRecorder r_rec;
   common::RealTimeNodeThread rec_thread(r_rec, clock, url);
@@ -238,12 +252,19 @@ TEST(DynamicsNode, VirtualAndRealTimeGiveTheSameTrajectory) {
     worst_deg = std::max(worst_deg, attitude_difference_rad(qr, qv) * 180.0 / M_PI);
     ++compared;
   }
-  std::cout << "virtual vs real time (factor 5): " << compared << " states compared, worst "
-            << worst_m * 100 << " cm, " << worst_deg << " deg\n";
+  std::cout << "virtual vs real time (factor 3): " << compared << " states compared, worst "
+            << worst_m * 100 << " cm, " << worst_deg << " deg; stale steps " << r_dyn.counters().stale_steps << "\n";
   EXPECT_GT(compared, 1800);  // most of the 1900 steps after t = 1 s
-  EXPECT_LT(worst_m, 0.10);
-  EXPECT_LT(worst_deg, 1.0);
-  EXPECT_GT(std::abs(v_rec.states.rbegin()->second.p_W_m[0]), 5.0);  // it flew somewhere
+  EXPECT_LT(worst_m, 0.5);
+  EXPECT_LT(worst_deg, 2.0);
+  EXPECT_EQ(r_dyn.counters().stale_steps, 0u);
+  // It really flew: it climbed and turned.
+  const vehicle_state_t& last = v_rec.states.rbegin()->second;
+  EXPECT_GT(last.p_W_m[2], 65.0);
+  const Eigen::Quaterniond q_last(last.q_WB[0], last.q_WB[1], last.q_WB[2], last.q_WB[3]);
+  const Eigen::Quaterniond q_mid(v_rec.states.at(10'000'000).q_WB[0], v_rec.states.at(10'000'000).q_WB[1],
+                                 v_rec.states.at(10'000'000).q_WB[2], v_rec.states.at(10'000'000).q_WB[3]);
+  EXPECT_GT(attitude_difference_rad(q_mid, Eigen::Quaterniond::Identity()) * 180.0 / M_PI, 10.0);
 }
 
 }  // namespace
