@@ -15,6 +15,7 @@
 #include "bridge/nodes/bridge_node.hpp"
 #include "common/runtime.hpp"
 #include "rigs/cli/command_registry.hpp"
+#include "rigs/cli/node_thread_loop.hpp"
 #include "rigs/cli/signal_stop.hpp"
 #include "rigs/fc_setup.hpp"
 
@@ -65,24 +66,11 @@ int run_bridge(const BridgeArgs& args) {
                args.node_id, can->name().c_str(), thread.bus().url().c_str(), args.rates.imu_hz, args.rates.gnss_hz,
                args.rates.baro_hz, args.rates.mag_hz, args.rates.battery_hz,
                static_cast<unsigned long long>(args.seed), args.rtf);
-  install_stop_signals();
-  thread.start();
-  int64_t last_report_ns = common::WallClock::monotonic_now_ns();
-  while (!stop_requested() && thread.failure().empty()) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    const double sim_s = clock.now_s();
-    const int64_t now_ns = common::WallClock::monotonic_now_ns();
-    const bool done = args.duration_s > 0 && sim_s >= args.duration_s;
-    if ((now_ns - last_report_ns) * 1e-9 >= args.report_every_s || done) {
-      report(node, *can, sim_s);
-      last_report_ns = now_ns;
-    }
-    if (done) break;
-  }
-  thread.stop_and_join();
+  const std::string failure = run_node_thread(thread, clock, args.duration_s, args.report_every_s,
+                                              [&](double sim_s) { report(node, *can, sim_s); });
   node.stop();
-  if (!thread.failure().empty()) {
-    std::cerr << "a3rig node bridge: stopped by an error: " << thread.failure() << "\n";
+  if (!failure.empty()) {
+    std::cerr << "a3rig node bridge: stopped by an error: " << failure << "\n";
     return 1;
   }
   return 0;

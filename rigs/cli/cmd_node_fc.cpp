@@ -18,6 +18,7 @@
 #include "dynamics/scenario_setup.hpp"
 #include "dynamics/vehicle_params.hpp"
 #include "rigs/cli/command_registry.hpp"
+#include "rigs/cli/node_thread_loop.hpp"
 #include "rigs/cli/signal_stop.hpp"
 #include "rigs/fc_setup.hpp"
 
@@ -92,24 +93,11 @@ int run_fc(const FcArgs& args) {
                args.node_id, can->name().c_str(), config.params.control_rate_hz, config.params.status_rate_hz,
                config.params.vehicle.mass_kg, config.home.latitude_deg, config.home.longitude_deg,
                config.home.height_m, args.rtf);
-  install_stop_signals();
-  thread.start();
-  int64_t last_report_ns = common::WallClock::monotonic_now_ns();
-  while (!stop_requested() && thread.failure().empty()) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    const double sim_s = clock.now_s();
-    const int64_t now_ns = common::WallClock::monotonic_now_ns();
-    const bool done = args.duration_s > 0 && sim_s >= args.duration_s;
-    if ((now_ns - last_report_ns) * 1e-9 >= args.report_every_s || done) {
-      report(node, *can, sim_s);
-      last_report_ns = now_ns;
-    }
-    if (done) break;
-  }
-  thread.stop_and_join();
+  const std::string failure = run_node_thread(thread, clock, args.duration_s, args.report_every_s,
+                                              [&](double sim_s) { report(node, *can, sim_s); });
   node.stop();
-  if (!thread.failure().empty()) {
-    std::cerr << "a3rig node fc: stopped by an error: " << thread.failure() << "\n";
+  if (!failure.empty()) {
+    std::cerr << "a3rig node fc: stopped by an error: " << failure << "\n";
     return 1;
   }
   const auto lateness = thread.executor().lateness_samples_us();
