@@ -34,6 +34,23 @@ int64_t WallClock::mono_ns_at(int64_t sim_us) const {
          static_cast<int64_t>(std::ceil(static_cast<double>(sim_us) * 1e3 / real_time_factor_));
 }
 
+SteppedClock::SteppedClock(int64_t start_us)
+    : granted_us_(start_us), last_grant_mono_ns_(WallClock::monotonic_now_ns()) {}
+
+std::optional<int64_t> SteppedClock::due_mono_ns(int64_t sim_us) const {
+  if (sim_us > now_us()) return std::nullopt;
+  return last_grant_mono_ns();
+}
+
+int64_t SteppedClock::available_mono_ns(int64_t) const { return last_grant_mono_ns(); }
+
+bool SteppedClock::advance_to(int64_t t_us) {
+  if (t_us <= granted_us_.load(std::memory_order_relaxed)) return false;
+  last_grant_mono_ns_.store(WallClock::monotonic_now_ns(), std::memory_order_release);
+  granted_us_.store(t_us, std::memory_order_release);
+  return true;
+}
+
 void VirtualClock::advance_to(int64_t t_us) {
   if (t_us < now_us_) {
     throw std::logic_error("VirtualClock: cannot go back from " + std::to_string(now_us_) +

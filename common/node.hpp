@@ -6,6 +6,7 @@
 #include <string>
 
 #include "common/bus.hpp"
+#include "common/counters.hpp"
 #include "common/executor.hpp"
 
 namespace a3::common {
@@ -16,6 +17,8 @@ class Node {
   virtual std::string name() const = 0;
   // Subscribe on `bus`, schedule on `executor`. Both outlive the node's activity.
   virtual void start(Executor& executor, Bus& bus) = 0;
+  // What the node counts (published on the bus by the runtime; empty by default).
+  virtual const CounterSet& counters() const;
 };
 
 }  // namespace a3::common

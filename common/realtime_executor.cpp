@@ -13,7 +13,7 @@
 
 namespace a3::common {
 
-RealTimeExecutor::RealTimeExecutor(const WallClock& clock, LcmBus* bus)
+RealTimeExecutor::RealTimeExecutor(const RealTimeClock& clock, LcmBus* bus)
     : clock_(clock), bus_(bus) {
   wake_fd_ = ::eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
   if (wake_fd_ < 0) {
@@ -67,6 +67,62 @@ std::vector<double> RealTimeExecutor::lateness_samples_us() const {
   return lateness_us_;
 }
 
+void RealTimeExecutor::set_housekeeping(int64_t period_ns, std::function<void()> fn) {
+  housekeeping_period_ns_ = period_ns;
+  housekeeping_ = std::move(fn);
+  next_housekeeping_ns_ = WallClock::monotonic_now_ns() + period_ns;
+}
+
+std::optional<int64_t> RealTimeExecutor::wait_deadline_ns(int64_t end_us) const {
+  std::optional<int64_t> deadline;
+  const auto earliest = [&](std::optional<int64_t> t) {
+    if (t && (!deadline || *t < *deadline)) deadline = t;
+  };
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (auto next = queue_.next_time_us()) earliest(clock_.due_mono_ns(*next));
+  }
+  if (end_us >= 0) earliest(clock_.due_mono_ns(end_us));
+  if (driver_ != nullptr) earliest(driver_->next_poll_mono_ns());
+  if (housekeeping_) earliest(next_housekeeping_ns_);
+  return deadline;
+}
+
+void RealTimeExecutor::record_lateness(double late_us) {
+  if (late_us > deadline_miss_us_) ++deadline_misses_;
+  if (late_us > max_lateness_us_.load(std::memory_order_relaxed)) max_lateness_us_.store(late_us);
+  if (lateness_capacity_ == 0) return;
+  if (lateness_us_.size() < lateness_capacity_) {
+    lateness_us_.push_back(late_us);
+  } else {
+    lateness_us_[lateness_next_] = late_us;
+    lateness_next_ = (lateness_next_ + 1) % lateness_capacity_;
+  }
+}
+
+void RealTimeExecutor::run_due_timers() {
+  while (!stop_) {
+    // In this order, a timer due at now_us was available by mono_now_ns: lateness is never < 0.
+    const int64_t now_us = clock_.now_us();
+    const int64_t mono_now_ns = WallClock::monotonic_now_ns();
+    std::optional<TimerQueue::Due> due;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      due = queue_.pop_due(now_us);
+      // Steps (periodic timers) only: a one-shot event posted now (a received CAN frame) was
+      // never due earlier.
+      if (due && due->period_us > 0) {
+        record_lateness(static_cast<double>(mono_now_ns - clock_.available_mono_ns(due->time_us)) * 1e-3);
+      }
+    }
+    if (!due) return;
+    ++timers_run_;
+    (*due->fn)();
+    std::lock_guard<std::mutex> lock(mutex_);
+    queue_.finish(*due);
+  }
+}
+
 void RealTimeExecutor::run(int64_t end_us) {
   // Wake-ups as close to the deadline as the kernel allows (default slack is 50 us).
   ::prctl(PR_SET_TIMERSLACK, 1UL, 0, 0, 0);
@@ -74,17 +130,11 @@ void RealTimeExecutor::run(int64_t end_us) {
   const nfds_t nfds = bus_ != nullptr ? 2 : 1;
 
   while (!stop_) {
-    int64_t deadline_us = -1;
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (auto next = queue_.next_time_us()) deadline_us = *next;
-    }
-    if (end_us >= 0 && (deadline_us < 0 || deadline_us > end_us)) deadline_us = end_us;
-
+    const std::optional<int64_t> deadline_ns = wait_deadline_ns(end_us);
     timespec timeout{};
     timespec* timeout_ptr = nullptr;
-    if (deadline_us >= 0) {
-      int64_t wait_ns = clock_.mono_ns_at(deadline_us) - WallClock::monotonic_now_ns();
+    if (deadline_ns) {
+      int64_t wait_ns = *deadline_ns - WallClock::monotonic_now_ns();
       if (wait_ns < 0) wait_ns = 0;
       timeout.tv_sec = wait_ns / 1'000'000'000;
       timeout.tv_nsec = wait_ns % 1'000'000'000;
@@ -100,32 +150,14 @@ void RealTimeExecutor::run(int64_t end_us) {
       [[maybe_unused]] const auto n = ::read(wake_fd_, &count, sizeof count);
     }
     if (ready > 0 && nfds == 2 && (fds[1].revents & POLLIN)) bus_->handle_ready();
-
-    // Run every timer due now, in schedule order.
-    while (!stop_) {
-      // In this order, a timer due at now_us was due by mono_now_ns: lateness is never < 0.
-      const int64_t now_us = clock_.now_us();
-      const int64_t mono_now_ns = WallClock::monotonic_now_ns();
-      std::optional<TimerQueue::Due> due;
-      {
-        std::lock_guard<std::mutex> lock(mutex_);
-        due = queue_.pop_due(now_us);
-        if (due && lateness_capacity_ > 0) {
-          const double late_us =
-              static_cast<double>(mono_now_ns - clock_.mono_ns_at(due->time_us)) * 1e-3;
-          if (lateness_us_.size() < lateness_capacity_) {
-            lateness_us_.push_back(late_us);
-          } else {
-            lateness_us_[lateness_next_] = late_us;
-            lateness_next_ = (lateness_next_ + 1) % lateness_capacity_;
-          }
-        }
-      }
-      if (!due) break;
-      ++timers_run_;
-      (*due->fn)();
-      std::lock_guard<std::mutex> lock(mutex_);
-      queue_.finish(*due);
+    // The driver moves time one step at a time; each step's timers run before the next.
+    do {
+      run_due_timers();
+      if (driver_ != nullptr) driver_->after_due_timers();
+    } while (!stop_ && driver_ != nullptr && driver_->poll(WallClock::monotonic_now_ns()));
+    if (housekeeping_ && WallClock::monotonic_now_ns() >= next_housekeeping_ns_) {
+      next_housekeeping_ns_ = WallClock::monotonic_now_ns() + housekeeping_period_ns_;
+      housekeeping_();
     }
     if (end_us >= 0 && clock_.now_us() >= end_us) break;
   }

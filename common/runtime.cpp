@@ -3,19 +3,88 @@
 
 #include <exception>
 
+#include "a3lcm/sim_clock_t.hpp"
+#include "common/channels.hpp"
+#include "common/node_stats.hpp"
+
 namespace a3::common {
 
-RealTimeNodeThread::RealTimeNodeThread(Node& node, const WallClock& clock,
-                                       const std::string& lcm_url)
-    : node_(node), bus_(lcm_url, &clock), executor_(clock, &bus_) {}
+ThreadClock ThreadClock::free_running(const WallClock& clock) {
+  ThreadClock c;
+  c.kind = Kind::kWall;
+  c.wall = &clock;
+  return c;
+}
+
+ThreadClock ThreadClock::master(LockstepConfig pacing) {
+  ThreadClock c;
+  c.kind = Kind::kLockstepMaster;
+  c.pacing = std::move(pacing);
+  return c;
+}
+
+ThreadClock ThreadClock::follower() {
+  ThreadClock c;
+  c.kind = Kind::kLockstepFollower;
+  return c;
+}
+
+ThreadClock ThreadClock::external() {
+  ThreadClock c;
+  c.kind = Kind::kLockstepExternal;
+  return c;
+}
+
+RealTimeNodeThread::RealTimeNodeThread(Node& node, const WallClock& clock, const std::string& lcm_url)
+    : RealTimeNodeThread(node, ThreadClock::free_running(clock), lcm_url) {}
+
+namespace {
+
+const RealTimeClock* pick_clock(const ThreadClock& how, std::unique_ptr<SteppedClock>& stepped) {
+  if (how.kind == ThreadClock::Kind::kWall) {
+    if (how.wall == nullptr) throw std::invalid_argument("RealTimeNodeThread: a free-running thread needs a wall clock");
+    return how.wall;
+  }
+  stepped = std::make_unique<SteppedClock>(0);
+  return stepped.get();
+}
+
+}  // namespace
+
+RealTimeNodeThread::RealTimeNodeThread(Node& node, const ThreadClock& how, const std::string& lcm_url)
+    : node_(node), clock_(pick_clock(how, stepped_)), bus_(lcm_url, clock_) {
+  executor_ = std::make_unique<RealTimeExecutor>(*clock_, &bus_);
+  executor_->set_deadline_miss_us(how.deadline_miss_us);
+  if (how.kind == ThreadClock::Kind::kLockstepMaster) {
+    pacer_ = std::make_unique<LockstepPacer>(*stepped_, bus_, how.pacing);
+    executor_->set_clock_driver(pacer_.get());
+  } else if (how.kind == ThreadClock::Kind::kLockstepFollower) {
+    SteppedClock* clock = stepped_.get();
+    bus_.subscribe<a3lcm::sim_clock_t>(channels::kClock,
+                                       [clock](const a3lcm::sim_clock_t& m, int64_t) { clock->advance_to(m.utime_us); });
+  }
+}
 
 RealTimeNodeThread::~RealTimeNodeThread() { stop_and_join(); }
 
+void RealTimeNodeThread::publish_stats(bool final) {
+  NamedValues timing = executor_timing(*executor_);
+  if (pacer_) {
+    const NamedValues pacing = lockstep_timing(pacer_->stats());
+    timing.insert(timing.end(), pacing.begin(), pacing.end());
+  }
+  bus_.publish(channels::kNodeStats, make_node_stats(node_.name(), clock_->now_us(), final, node_.counters(), timing));
+}
+
 void RealTimeNodeThread::start() {
-  node_.start(executor_, bus_);
+  node_.start(*executor_, bus_);
+  if (stats_period_s_ > 0.0) {
+    executor_->set_housekeeping(static_cast<int64_t>(stats_period_s_ * 1e9), [this] { publish_stats(false); });
+  }
   thread_ = std::thread([this] {
     try {
-      executor_.run();
+      executor_->run();
+      publish_stats(true);
     } catch (const std::exception& e) {
       std::lock_guard<std::mutex> lock(failure_mutex_);
       failure_ = e.what();
@@ -25,7 +94,7 @@ void RealTimeNodeThread::start() {
 }
 
 void RealTimeNodeThread::stop_and_join() {
-  executor_.stop();
+  executor_->stop();
   if (thread_.joinable()) thread_.join();
 }
 

@@ -1,8 +1,16 @@
 // The two runtimes of DESIGN.md "Time", for running nodes:
 // - VirtualRuntime: every node in one thread under the discrete-event scheduler, on an
 //   in-process bus carrying LCM-encoded bytes; as fast as possible, deterministic.
-// - RealTimeNodeThread: one node in its own thread on the wall clock, with its own LCM bus
-//   (udpm:// by default), like a separate process would be.
+// - RealTimeNodeThread: one node in its own thread with its own LCM bus (udpm:// by default),
+//   like a separate process would be, keeping time one of four ways (ThreadClock):
+//     wall              the wall clock at a real-time factor (free-running, `--sync free`);
+//     lockstep master   a SteppedClock moved by a LockstepPacer on this thread, which grants
+//                       time on A3_CLOCK (the dynamics' thread);
+//     lockstep follower a SteppedClock moved by the A3_CLOCK grants it hears on its bus;
+//     lockstep external a SteppedClock moved by the node itself from another transport (the
+//                       flight controller: a3.sim.Clock frames on CAN).
+//   It publishes the node's statistics (node_stats_t on A3_NODE_STATS) every stats period of
+//   wall time and once, final, when it stops.
 #pragma once
 
 #include <memory>
@@ -12,6 +20,7 @@
 
 #include "common/clock.hpp"
 #include "common/lcm_bus.hpp"
+#include "common/lockstep_pacer.hpp"
 #include "common/node.hpp"
 #include "common/realtime_executor.hpp"
 #include "common/virtual_bus.hpp"
@@ -34,25 +43,51 @@ class VirtualRuntime {
   VirtualBus bus_;
 };
 
+struct ThreadClock {
+  enum class Kind { kWall, kLockstepMaster, kLockstepFollower, kLockstepExternal };
+  Kind kind = Kind::kWall;
+  const WallClock* wall = nullptr;  // kWall: shared by every node of the run
+  LockstepConfig pacing;            // kLockstepMaster
+  double deadline_miss_us = 2000.0;
+
+  static ThreadClock free_running(const WallClock& clock);
+  static ThreadClock master(LockstepConfig pacing);
+  static ThreadClock follower();
+  static ThreadClock external();
+};
+
 class RealTimeNodeThread {
  public:
-  // The clock is shared by every node of a run; lcm_url as for LcmBus.
+  // lcm_url as for LcmBus. The first form runs on a shared wall clock (free-running).
   RealTimeNodeThread(Node& node, const WallClock& clock, const std::string& lcm_url = "");
+  RealTimeNodeThread(Node& node, const ThreadClock& how, const std::string& lcm_url = "");
   ~RealTimeNodeThread();
   RealTimeNodeThread(const RealTimeNodeThread&) = delete;
   RealTimeNodeThread& operator=(const RealTimeNodeThread&) = delete;
 
+  // Statistics every period_s of wall time (0: only the final ones). Before start().
+  void set_stats_period(double period_s) { stats_period_s_ = period_s; }
   void start();
   void stop_and_join();
-  RealTimeExecutor& executor() { return executor_; }
+  RealTimeExecutor& executor() { return *executor_; }
   LcmBus& bus() { return bus_; }
+  const RealTimeClock& clock() const { return *clock_; }
+  // The lockstep clock (nullptr when free-running) and pacer (the master only).
+  SteppedClock* stepped_clock() { return stepped_.get(); }
+  LockstepPacer* pacer() { return pacer_.get(); }
   // The exception that ended the thread, if one did ("" otherwise).
   std::string failure() const;
 
  private:
+  void publish_stats(bool final);
+
   Node& node_;
+  std::unique_ptr<SteppedClock> stepped_;
+  const RealTimeClock* clock_;
   LcmBus bus_;
-  RealTimeExecutor executor_;
+  std::unique_ptr<RealTimeExecutor> executor_;
+  std::unique_ptr<LockstepPacer> pacer_;
+  double stats_period_s_ = 1.0;
   std::thread thread_;
   mutable std::mutex failure_mutex_;
   std::string failure_;

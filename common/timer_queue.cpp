@@ -33,7 +33,7 @@ std::optional<TimerQueue::Due> TimerQueue::pop_due(int64_t t_us) {
     entry.first = next;
     order_.emplace(next, id);
   }
-  return Due{id, key.time_us, entry.second.fn};
+  return Due{id, key.time_us, entry.second.period_us, entry.second.fn};
 }
 
 void TimerQueue::finish(const Due& due) {

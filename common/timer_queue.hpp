@@ -18,6 +18,7 @@ class TimerQueue {
   struct Due {
     TimerId id;
     int64_t time_us;
+    int64_t period_us;  // 0: a one-shot timer
     // Shared so a callback may cancel its own timer (or add others) while it runs.
     std::shared_ptr<std::function<void()>> fn;
   };

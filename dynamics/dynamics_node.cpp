@@ -40,16 +40,6 @@ DynamicsNode::DynamicsNode(DynamicsNodeConfig config) : config_(std::move(config
 
 DynamicsNode::~DynamicsNode() = default;
 
-DynamicsNode::Counters DynamicsNode::counters() const {
-  Counters c;
-  c.steps = counters_.steps;
-  c.commands_received = counters_.commands_received;
-  c.commands_rejected = counters_.commands_rejected;
-  c.commands_clamped = counters_.commands_clamped;
-  c.stale_steps = counters_.stale_steps;
-  c.integration_errors = counters_.integration_errors;
-  return c;
-}
 
 void DynamicsNode::start(common::Executor& executor, common::Bus& bus) {
   executor_ = &executor;
@@ -104,6 +94,8 @@ void DynamicsNode::step() {
   const bool stale = !last_command_us_ ||
                      t_us - *last_command_us_ > static_cast<int64_t>(config_.command_timeout_s * 1e6);
   if (stale) ++counters_.stale_steps;
+  if (stale && !was_stale_) publish_command_timeout(t_us);
+  was_stale_ = stale;
   const RotorSpeeds command = stale ? RotorSpeeds{} : command_radps_;
   try {
     integrator_->advance_to(t_us * 1e-6, command);
@@ -131,6 +123,19 @@ void DynamicsNode::publish_events(int64_t utime_us) {
       common::log_info("dynamics", std::string(to_string(e.kind)) + " at t=" + std::to_string(e.time_s) + " s");
     }
   }
+}
+
+void DynamicsNode::publish_command_timeout(int64_t utime_us) {
+  const VehicleState& s = integrator_->state();
+  a3lcm::safety_event_t ev;
+  ev.utime_us = utime_us;
+  ev.kind = "command_timeout";
+  ev.source = "dynamics";
+  for (int i = 0; i < 3; ++i) ev.p_W_m[i] = s.p_W_m[i];
+  ev.value = last_command_us_ ? (utime_us - *last_command_us_) * 1e-6 : 0.0;
+  ev.detail = "no rotor command for " + std::to_string(ev.value) + " s of simulated time: motors spun down";
+  bus_->publish(config_.safety_channel, ev);
+  common::log_warn("dynamics", ev.detail);
 }
 
 void DynamicsNode::publish_state(int64_t utime_us) {

@@ -5,7 +5,12 @@
 //
 // Input checking, as an ESC would do it: a command with a NaN or infinite throttle is rejected
 // (counted, logged); a throttle outside [0, 1] is clamped (counted, logged); with no command for
-// longer than the timeout (0.5 s by default) the motors spin down; the node keeps publishing.
+// longer than the timeout (0.5 s by default) the motors spin down; the node keeps publishing, and
+// reports it once per silence as a safety event (kind "command_timeout"). The timeout counts
+// simulated time: in lockstep (the default real-time mode) simulated time cannot pass without
+// the flight controller's commands, so it trips only for a controller that is alive and
+// silent; free-running (`--sync free`, a real controller), a late host can trip it too, and the
+// episode's real-time accounting says whether the host was late.
 // Until the first command arrives the rotors hold the initial state's speeds (for the timeout).
 // Steps fall on a grid of whole periods of the clock (k · period), in both runtimes.
 #pragma once
@@ -45,16 +50,9 @@ class DynamicsNode final : public common::Node {
   std::string name() const override { return "dynamics"; }
   void start(common::Executor& executor, common::Bus& bus) override;
 
-  struct Counters {
-    uint64_t steps = 0;
-    uint64_t commands_received = 0;
-    uint64_t commands_rejected = 0;  // NaN or infinite throttle
-    uint64_t commands_clamped = 0;   // throttle outside [0, 1]
-    uint64_t stale_steps = 0;        // steps run with the motors spun down for lack of commands
-    uint64_t integration_errors = 0;
-  };
-  // Safe from any thread.
-  Counters counters() const;
+  // steps, commands, rejected (NaN or infinite throttle), clamped (throttle outside [0, 1]),
+  // stale_steps (steps run with the motors spun down for lack of commands), integration_errors.
+  const common::CounterSet& counters() const override { return counter_set_; }
   // Read only from the node's own thread (or after it stopped).
   const Integrator& integrator() const { return *integrator_; }
   const QuadrotorModel& model() const { return *model_; }
@@ -64,6 +62,7 @@ class DynamicsNode final : public common::Node {
   void step();
   void publish_state(int64_t utime_us);
   void publish_events(int64_t utime_us);
+  void publish_command_timeout(int64_t utime_us);
   void warn(uint64_t count, const std::string& message) const;
 
   DynamicsNodeConfig config_;
@@ -77,10 +76,16 @@ class DynamicsNode final : public common::Node {
   uint64_t step_index_ = 0;
   RotorSpeeds command_radps_{};
   std::optional<int64_t> last_command_us_;
-  struct AtomicCounters {
-    std::atomic<uint64_t> steps{0}, commands_received{0}, commands_rejected{0},
-        commands_clamped{0}, stale_steps{0}, integration_errors{0};
-  } counters_;
+  bool was_stale_ = false;
+  common::CounterSet counter_set_;
+  struct Counters {
+    explicit Counters(common::CounterSet& s)
+        : steps(s.add("steps")), commands_received(s.add("commands")), commands_rejected(s.add("rejected")),
+          commands_clamped(s.add("clamped")), stale_steps(s.add("stale_steps")),
+          integration_errors(s.add("integration_errors")) {}
+    common::Counter &steps, &commands_received, &commands_rejected, &commands_clamped, &stale_steps,
+        &integration_errors;
+  } counters_{counter_set_};
 };
 
 }  // namespace a3::dynamics

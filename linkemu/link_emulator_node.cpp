@@ -252,8 +252,8 @@ void LinkEmulatorNode::on_link_bytes(Direction& d, const uint8_t* data, std::siz
   }
   message.slice = to_string(state.slice);
   d.queue.push(out.delivery_us, std::move(message));
-  d.stats->pending = d.queue.size();
-  d.stats->max_pending = std::max<uint64_t>(d.stats->max_pending, d.queue.size());
+  d.stats->pending.set(d.queue.size());
+  d.stats->max_pending.set(std::max<uint64_t>(d.stats->max_pending, d.queue.size()));
   if (out.delivery_us < d.armed_us) arm(d, out.delivery_us);
 }
 
@@ -284,7 +284,7 @@ void LinkEmulatorNode::deliver_due(Direction& d) {
       }
     }
   }
-  d.stats->pending = d.queue.size();
+  d.stats->pending.set(d.queue.size());
   if (!d.queue.empty()) arm(d, d.queue.earliest_us());
 }
 

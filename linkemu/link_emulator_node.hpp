@@ -47,6 +47,7 @@ class LinkEmulatorNode final : public common::Node {
 
   // The accessors below belong to the executor's thread (or to after it stopped).
   const LinkStats& stats() const { return stats_; }
+  const common::CounterSet& counters() const override { return counter_set_; }
   NetworkState current_state();
   std::optional<Slice> pending_slice() const { return selector_->pending(); }
   // Publish time minus scheduled delivery time of the last deliveries, µs (0 in virtual
@@ -88,7 +89,8 @@ class LinkEmulatorNode final : public common::Node {
   std::unique_ptr<NetworkStateSource> source_;
   std::unique_ptr<SliceSelector> selector_;
   Direction up_, down_;
-  LinkStats stats_;
+  common::CounterSet counter_set_;
+  LinkStats stats_{counter_set_};
   std::vector<RecordSink> sinks_;
   common::TimerId change_timer_ = 0;
   std::vector<float> lateness_us_;

@@ -1,10 +1,14 @@
 // Counters of the link emulator, per direction: messages in, delivered, lost, and dropped
-// for each bad-input reason.
+// for each bad-input reason. They live in the node's CounterSet (common/counters.hpp) under
+// dotted names ("up.delivered", "down.dropped.queue_full", "slice_switch_requests"), which is
+// how they reach the bus and the episode.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <string>
+
+#include "common/counters.hpp"
 
 namespace a3::linkemu {
 
@@ -17,23 +21,30 @@ enum class DropReason : uint8_t {
 inline constexpr std::size_t kDropReasonCount = 4;
 const char* to_string(DropReason reason);
 
+struct DropCounters {
+  std::array<common::Counter*, kDropReasonCount> counters{};
+  common::Counter& operator[](std::size_t reason) const { return *counters[reason]; }
+};
+
 struct DirectionStats {
-  uint64_t received = 0;   // everything that arrived on the TX channel
-  uint64_t delivered = 0;  // published on the RX channel
-  uint64_t lost = 0;       // lost by the loss model
-  std::array<uint64_t, kDropReasonCount> dropped{};
-  uint64_t bytes_delivered = 0;  // charged sizes
-  uint64_t pending = 0;          // waiting for their delivery time now
-  uint64_t max_pending = 0;
+  DirectionStats(common::CounterSet& set, const std::string& direction);
+  common::Counter& received;   // everything that arrived on the TX channel
+  common::Counter& delivered;  // published on the RX channel
+  common::Counter& lost;       // lost by the loss model
+  DropCounters dropped;
+  common::Counter& bytes_delivered;  // charged sizes
+  common::Counter& pending;          // waiting for their delivery time now
+  common::Counter& max_pending;
   uint64_t dropped_total() const;
 };
 
 struct LinkStats {
+  explicit LinkStats(common::CounterSet& set);
   DirectionStats up, down;
-  uint64_t slice_switch_requests = 0;
-  uint64_t edge_requests = 0;
-  uint64_t net_published = 0;
-  uint64_t records = 0;
+  common::Counter& slice_switch_requests;
+  common::Counter& edge_requests;
+  common::Counter& net_published;
+  common::Counter& records;
 };
 
 // "up: 120 in, 118 delivered, 2 lost, 0 dropped; down: ..." for logs.

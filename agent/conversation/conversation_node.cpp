@@ -51,10 +51,6 @@ std::vector<Turn> ConversationNode::turns() const {
   return turns_;
 }
 
-ConversationNode::Counters ConversationNode::counters() const {
-  return {counters_.actions_sent, counters_.observations, counters_.timeouts,
-          counters_.stale,        counters_.malformed,    counters_.heartbeats};
-}
 
 void ConversationNode::start(common::Executor& executor, common::Bus& bus) {
   executor_ = &executor;
@@ -64,6 +60,8 @@ void ConversationNode::start(common::Executor& executor, common::Bus& bus) {
     net_ = n;
     have_net_ = true;
   });
+  bus.subscribe<a3lcm::link_record_t>(common::channels::kLinkRecord,
+                                      [this](const a3lcm::link_record_t& r, int64_t) { on_link_record(r); });
   bus.subscribe<a3lcm::link_message_t>(common::channels::kLinkDownRx,
                                        [this](const a3lcm::link_message_t& m, int64_t) { on_downlink(m); });
   bus.subscribe<a3lcm::vehicle_state_t>(common::channels::kState, [this](const a3lcm::vehicle_state_t& s, int64_t) {
@@ -262,15 +260,57 @@ void ConversationNode::wait_for_user_trigger() {
   dispatch(u.actions);
 }
 
+void ConversationNode::send_turn_message() {
+  turn_message_id_ = next_message_id_++;
+  const std::string body = nlohmann::json({{"turn", current_.number}, {"speaker", current_.speaker},
+                                           {"intent", current_.intent}, {"text", current_.text}})
+                               .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  a3lcm::link_message_t m;
+  m.utime_us = executor_->clock().now_us();
+  m.sent_utime_us = m.utime_us;
+  m.message_id = turn_message_id_;
+  m.sender = config_.sender;
+  m.kind = "turn";
+  m.payload.assign(body.begin(), body.end());
+  m.payload_length = static_cast<int32_t>(m.payload.size());
+  m.payload_size_bytes = m.payload_length;
+  current_.sent_s = now_s();
+  awaiting_record_ = true;
+  bus_->publish(common::channels::kLinkUpTx, m);
+  // A link emulator that never answers must not hold the dialogue: keep the n_t heard last.
+  record_timer_ = executor_->schedule_after(2'000'000, [this] {
+    if (!awaiting_record_) return;
+    awaiting_record_ = false;
+    current_.net = net_json();
+    maybe_complete_turn();
+  });
+}
+
+void ConversationNode::on_link_record(const a3lcm::link_record_t& r) {
+  if (!awaiting_record_ || r.sender != config_.sender || r.message_id != turn_message_id_) return;
+  awaiting_record_ = false;
+  executor_->cancel(record_timer_);
+  current_.net = {{"slice", r.slice},           {"lat_ms", r.net_lat_ms},
+                  {"jitter_ms", r.net_jitter_ms}, {"loss_pct", r.net_loss_pct},
+                  {"throughput_mbps", r.net_throughput_mbps}, {"edge_load", r.net_edge_load}};
+  if (r.outcome == a3lcm::link_record_t::DELIVERED) current_.delivered_s = r.delivery_utime_us * 1e-6 - start_s_;
+  maybe_complete_turn();
+}
+
+void ConversationNode::maybe_complete_turn() {
+  if (!in_turn_ || awaiting_record_) return;
+  for (const auto& p : pending_) {
+    if (!p.done) return;
+  }
+  complete_turn();
+}
+
 void ConversationNode::dispatch(const nlohmann::json& actions) {
   current_.actions = actions;
   current_.obs = nlohmann::json::array();
   pending_.assign(actions.size(), Pending{});
   for (std::size_t i = 0; i < actions.size(); ++i) current_.obs.push_back(nullptr);
-  if (actions.empty()) {
-    complete_turn();
-    return;
-  }
+  send_turn_message();
   for (std::size_t i = 0; i < actions.size(); ++i) {
     ActionEnvelope env{current_.number, static_cast<int>(i), actions[i]};
     const auto msg = encode_action(env, next_message_id_++, executor_->clock().now_us(), config_.sender);
@@ -300,10 +340,7 @@ void ConversationNode::on_downlink(const a3lcm::link_message_t& m) {
   current_.obs[i] = env->obs;
   ++counters_.observations;
   if (env->obs.value("tool", "") == "read_telemetry" && env->obs.contains("result")) last_telemetry_ = env->obs["result"];
-  for (const auto& p : pending_) {
-    if (!p.done) return;
-  }
-  complete_turn();
+  maybe_complete_turn();
 }
 
 void ConversationNode::on_action_timeout(std::size_t i) {
@@ -311,15 +348,13 @@ void ConversationNode::on_action_timeout(std::size_t i) {
   pending_[i].done = true;
   current_.obs[i] = timeout_observation(current_.actions[i]);
   ++counters_.timeouts;
-  for (const auto& p : pending_) {
-    if (!p.done) return;
-  }
-  complete_turn();
+  maybe_complete_turn();
 }
 
 void ConversationNode::publish_turn(const Turn& t) {
   nlohmann::json detail = t.to_json();
   detail["_rig"] = {{"started_s", t.started_s}, {"decided_s", t.decided_s}, {"finished_s", t.finished_s},
+                    {"sent_s", t.sent_s}, {"delivered_s", t.delivered_s},
                     {"think_time_s", t.think_time_s}, {"usage", t.usage}, {"attempts", t.attempts}, {"text", t.text}};
   if (t.attempt_log.is_array() && !t.attempt_log.empty()) detail["_rig"]["attempt_log"] = t.attempt_log;
   a3lcm::episode_event_t ev;

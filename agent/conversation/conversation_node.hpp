@@ -1,7 +1,9 @@
 // The ground side of an episode: runs the conversation of SPEC §1 — strict alternation
 // starting with the agent, 8..12 turns — between an agent and the simulated supervisor. Each
-// turn takes n_t from A3_NET; the speaker's actions go up the emulated link (A3_LINK_UP_TX)
-// and the turn ends when every observation has come down (A3_LINK_DOWN_RX) or timed out. The
+// turn, when its speaker has decided, sends one "turn" message up the emulated link
+// (A3_LINK_UP_TX) and then its actions; the turn's n_t is the link's state when that message
+// crossed (its A3_LINK_RECORD), and the turn ends when that record is in and every
+// observation has come down (A3_LINK_DOWN_RX) or timed out. The
 // agent's latency passes in the simulated world before its actions leave. Between turns the
 // world keeps flying: the supervisor speaks when the vehicle has settled, an objective is
 // done, the link degrades, traffic comes close, or after a maximum wait. Completed turns go
@@ -18,6 +20,7 @@
 
 #include "a3lcm/fc_status_t.hpp"
 #include "a3lcm/link_message_t.hpp"
+#include "a3lcm/link_record_t.hpp"
 #include "a3lcm/network_state_t.hpp"
 #include "a3lcm/payload_event_t.hpp"
 #include "a3lcm/traffic_state_t.hpp"
@@ -63,15 +66,9 @@ class ConversationNode final : public common::Node {
   bool finished() const { return finished_.load(); }
   // Snapshots, safe from any thread.
   std::vector<Turn> turns() const;
-  struct Counters {
-    uint64_t actions_sent = 0;
-    uint64_t observations = 0;
-    uint64_t timeouts = 0;
-    uint64_t stale_observations = 0;  // for an earlier turn, arrived too late
-    uint64_t malformed = 0;
-    uint64_t heartbeats = 0;
-  };
-  Counters counters() const;
+  // actions_sent, observations, timeouts, stale_observations (for an earlier turn, arrived
+  // too late), malformed, heartbeats.
+  const common::CounterSet& counters() const override { return counter_set_; }
 
  private:
   struct Pending {
@@ -88,6 +85,10 @@ class ConversationNode final : public common::Node {
   void on_downlink(const a3lcm::link_message_t& m);
   void on_action_timeout(std::size_t index);
   void complete_turn();
+  // Completes the turn once every action is answered and its link record is in.
+  void maybe_complete_turn();
+  void send_turn_message();
+  void on_link_record(const a3lcm::link_record_t& r);
   void publish_turn(const Turn& t);
   void finish(const std::string& why);
   AgentContext make_context() const;
@@ -110,6 +111,9 @@ class ConversationNode final : public common::Node {
   std::vector<Pending> pending_;
   bool in_turn_ = false;
   int64_t next_message_id_ = 1;
+  int64_t turn_message_id_ = -1;
+  bool awaiting_record_ = false;
+  common::TimerId record_timer_ = 0;
 
   a3lcm::network_state_t net_{};
   bool have_net_ = false;
@@ -133,9 +137,12 @@ class ConversationNode final : public common::Node {
   common::TimerId heartbeat_timer_ = 0;
 
   std::atomic<bool> finished_{false};
-  struct AtomicCounters {
-    std::atomic<uint64_t> actions_sent{0}, observations{0}, timeouts{0}, stale{0}, malformed{0}, heartbeats{0};
-  } counters_;
+  common::CounterSet counter_set_;
+  struct Counters {
+    explicit Counters(common::CounterSet& s)
+        : actions_sent(s.add("actions_sent")), observations(s.add("observations")), timeouts(s.add("timeouts")), stale(s.add("stale_observations")), malformed(s.add("malformed")), heartbeats(s.add("heartbeats")) {}
+    common::Counter &actions_sent, &observations, &timeouts, &stale, &malformed, &heartbeats;
+  } counters_{counter_set_};
 };
 
 }  // namespace a3::agent

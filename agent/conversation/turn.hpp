@@ -1,5 +1,6 @@
 // One turn of a conversational episode (SPEC §1): who speaks, the intent, the structured
-// actions, one observation per action, and the 6G network vector n_t at the turn.
+// actions, one observation per action, and the 6G network vector n_t at the turn: the state
+// of the link when the turn's message crossed it.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -20,6 +21,10 @@ struct Turn {
   double started_s = 0.0;       // mission time when the turn began
   double decided_s = 0.0;       // when the speaker's decision was ready (after think time)
   double finished_s = 0.0;      // when the last observation arrived (or timed out)
+  // The turn's message on the link: handed to it (sent_s) and delivered (delivered_s; < 0 when
+  // lost or dropped). `net` is the link's n_t when it crossed.
+  double sent_s = -1.0;
+  double delivered_s = -1.0;
   double think_time_s = 0.0;    // latency charged to the turn (measured or declared)
   nlohmann::json usage = nlohmann::json::object();  // tokens, for LLM agents
   int attempts = 1;

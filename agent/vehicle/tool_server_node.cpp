@@ -49,32 +49,10 @@ ToolServerNode::ToolServerNode(ToolServerConfig config, const ToolCatalog& catal
       weather_(config_.env, config_.weather),
       ground_station_(gate_, config_.planner),
       speed_mps_(config_.energy.cruise_speed_mps),
-      counters_(std::make_unique<AtomicCounters>()) {}
+      counters_(std::make_unique<AtomicCounters>(counter_set_)) {}
 
 ToolServerNode::~ToolServerNode() = default;
 
-ToolServerCounters ToolServerNode::counters() const {
-  const AtomicCounters& c = *counters_;
-  ToolServerCounters out;
-  out.link_messages = c.link_messages;
-  out.malformed_dropped = c.malformed_dropped;
-  out.queue_overflow_dropped = c.queue_overflow_dropped;
-  out.heartbeats_forwarded = c.heartbeats_forwarded;
-  out.mcp_calls = c.mcp_calls;
-  out.a2a_messages = c.a2a_messages;
-  out.errors = c.errors;
-  out.gate_refusals = c.gate_refusals;
-  out.fc_commands = c.fc_commands;
-  out.fc_refusals = c.fc_refusals;
-  out.timeouts = c.timeouts;
-  out.routes_started = c.routes_started;
-  out.routes_completed = c.routes_completed;
-  out.routes_aborted = c.routes_aborted;
-  out.images_captured = c.images_captured;
-  out.image_bytes_downlinked = c.image_bytes_downlinked;
-  out.observations_sent = c.observations_sent;
-  return out;
-}
 
 void ToolServerNode::start(common::Executor& executor, common::Bus& bus) {
   executor_ = &executor;
@@ -109,6 +87,10 @@ void ToolServerNode::on_link_message(const a3lcm::link_message_t& m) {
     c.yaw_deg = std::numeric_limits<double>::quiet_NaN();
     bus_->publish(common::channels::kFcCommand, c);
     ++counters_->heartbeats_forwarded;
+    return;
+  }
+  if (m.kind == "turn") {  // the dialogue's own turn message: crosses the link, asks nothing
+    ++counters_->turn_messages;
     return;
   }
   if (m.kind != "mcp_call" && m.kind != "a2a_message") {

@@ -49,25 +49,6 @@
 
 namespace a3::agent {
 
-struct ToolServerCounters {
-  uint64_t link_messages = 0;           // received on A3_LINK_UP_RX
-  uint64_t malformed_dropped = 0;       // not a well-formed envelope, or an unknown kind: logged, dropped
-  uint64_t queue_overflow_dropped = 0;  // actions beyond max_queued_actions: logged, dropped
-  uint64_t heartbeats_forwarded = 0;
-  uint64_t mcp_calls = 0;
-  uint64_t a2a_messages = 0;
-  uint64_t errors = 0;                  // error observations (unknown tool/task, bad arguments)
-  uint64_t gate_refusals = 0;
-  uint64_t fc_commands = 0;             // on A3_FC_CMD, heartbeats not included
-  uint64_t fc_refusals = 0;             // commands the fc refused (as its status said)
-  uint64_t timeouts = 0;                // no fc status / slice reply in time
-  uint64_t routes_started = 0;
-  uint64_t routes_completed = 0;
-  uint64_t routes_aborted = 0;          // by a failsafe, a refusal or a newer motion command
-  uint64_t images_captured = 0;
-  uint64_t image_bytes_downlinked = 0;  // bytes charged to the downlink for images
-  uint64_t observations_sent = 0;
-};
 
 class ToolServerNode final : public common::Node {
  public:
@@ -79,8 +60,14 @@ class ToolServerNode final : public common::Node {
   std::string name() const override { return "tool_server"; }
   void start(common::Executor& executor, common::Bus& bus) override;
 
-  // Safe from any thread.
-  ToolServerCounters counters() const;
+  // link_messages (received on A3_LINK_UP_RX), malformed_dropped (not a well-formed envelope,
+  // or an unknown kind), queue_overflow_dropped (actions beyond max_queued_actions),
+  // heartbeats_forwarded, mcp_calls, a2a_messages, errors (error observations), gate_refusals,
+  // fc_commands (heartbeats not included), fc_refusals, timeouts (no fc status / slice reply
+  // in time), routes_started, routes_completed, routes_aborted (by a failsafe, a refusal or a
+  // newer motion command), images_captured, image_bytes_downlinked, observations_sent,
+  // turn_messages (the dialogue's turn messages, which ask nothing).
+  const common::CounterSet& counters() const override { return counter_set_; }
   // The executor's thread only (or after it stopped).
   const ImageStore& images() const { return images_; }
   const SwarmPeer& swarm() const { return swarm_; }
@@ -91,10 +78,9 @@ class ToolServerNode final : public common::Node {
 
  private:
   struct AtomicCounters {
-    std::atomic<uint64_t> link_messages{0}, malformed_dropped{0}, queue_overflow_dropped{0}, heartbeats_forwarded{0},
-        mcp_calls{0}, a2a_messages{0}, errors{0}, gate_refusals{0}, fc_commands{0}, fc_refusals{0}, timeouts{0},
-        routes_started{0}, routes_completed{0}, routes_aborted{0}, images_captured{0}, image_bytes_downlinked{0},
-        observations_sent{0};
+    explicit AtomicCounters(common::CounterSet& s)
+        : link_messages(s.add("link_messages")), malformed_dropped(s.add("malformed_dropped")), queue_overflow_dropped(s.add("queue_overflow_dropped")), heartbeats_forwarded(s.add("heartbeats_forwarded")), mcp_calls(s.add("mcp_calls")), a2a_messages(s.add("a2a_messages")), errors(s.add("errors")), gate_refusals(s.add("gate_refusals")), fc_commands(s.add("fc_commands")), fc_refusals(s.add("fc_refusals")), timeouts(s.add("timeouts")), routes_started(s.add("routes_started")), routes_completed(s.add("routes_completed")), routes_aborted(s.add("routes_aborted")), images_captured(s.add("images_captured")), image_bytes_downlinked(s.add("image_bytes_downlinked")), observations_sent(s.add("observations_sent")), turn_messages(s.add("turn_messages")) {}
+    common::Counter &link_messages, &malformed_dropped, &queue_overflow_dropped, &heartbeats_forwarded, &mcp_calls, &a2a_messages, &errors, &gate_refusals, &fc_commands, &fc_refusals, &timeouts, &routes_started, &routes_completed, &routes_aborted, &images_captured, &image_bytes_downlinked, &observations_sent, &turn_messages;
   };
   using StatusContinuation = std::function<void(const a3lcm::fc_status_t* status)>;  // nullptr: timed out
   using SliceContinuation = std::function<void(const a3lcm::slice_switch_reply_t* reply)>;
@@ -184,6 +170,7 @@ class ToolServerNode final : public common::Node {
   std::optional<Eigen::Vector3d> takeoff_target_W_m_;
   double speed_mps_;  // the cruise speed the fc flies at (as last set)
 
+  common::CounterSet counter_set_;
   std::unique_ptr<AtomicCounters> counters_;
 };
 

@@ -228,7 +228,6 @@ int main(int argc, char** argv) {
     for (std::size_t i = 0; i < step_late.size(); ++i) out << "step," << i << ',' << step_late[i] << '\n';
     for (const auto& a : measured) out << "state," << a.utime_us << ',' << (a.mono_ns - clock.mono_ns_at(a.utime_us)) * 1e-3 << '\n';
   }
-  const auto c = dyn.counters();
   const double expected_states = duration_s * rtf * config.publish_rate_hz + 1;
 
   std::printf("dynamics node in real time: %s integrator, %.0f Hz, real-time factor %g, patrol flight under its\n"
@@ -246,9 +245,7 @@ int main(int argc, char** argv) {
               states.max, states.count, states.over_1ms);
   std::printf("achieved real-time factor: %.5f (%.3f simulated s in %.3f wall s; %zu of %.0f states received)\n",
               achieved, achieved * wall_s, wall_s, states.count, expected_states);
-  std::printf("node counters: steps %llu, commands %llu, stale steps %llu, integration errors %llu; final z %.1f m\n",
-              static_cast<unsigned long long>(c.steps), static_cast<unsigned long long>(c.commands_received),
-              static_cast<unsigned long long>(c.stale_steps), static_cast<unsigned long long>(c.integration_errors),
+  std::printf("node counters: %s; final z %.1f m\n", common::to_text(dyn.counters()).c_str(),
               all.empty() ? 0.0 : all.back().z_m);
   return 0;
 }

@@ -7,6 +7,7 @@
 
 #include "a3lcm/actuator_cmd_t.hpp"
 #include "a3lcm/fc_status_t.hpp"
+#include "a3lcm/sim_clock_t.hpp"
 #include "bridge/dronecan/messages.hpp"
 #include "bridge/nodes/esc_scaling.hpp"
 #include "bridge/nodes/fc_messages.hpp"
@@ -67,6 +68,10 @@ void BridgeNode::start(common::Executor& executor, common::Bus& bus) {
                                         [this](const a3lcm::vehicle_state_t& s, int64_t) { on_state(s); });
   bus.subscribe<a3lcm::fc_command_t>(config_.command_channel,
                                      [this](const a3lcm::fc_command_t& c, int64_t) { on_command(c); });
+  if (config_.forward_sim_clock) {
+    bus.subscribe<a3lcm::sim_clock_t>(common::channels::kClock,
+                                      [this](const a3lcm::sim_clock_t& m, int64_t) { on_grant(m.utime_us); });
+  }
   timers_.push_back(executor.schedule_every(kNodeStatusPeriod_us / 2, [this] { update_health(); }));
   common::log_info("bridge", "node " + std::to_string(config_.node_id) + " on " + dronecan_.bus().name() +
                                  ": IMU " + std::to_string(config_.rates.imu_hz) + " Hz (at most one per state)");
@@ -180,6 +185,19 @@ void BridgeNode::on_esc(const EscRawCommand& esc) {
   if (clamped) warn(++counters_.esc_clamped, "took a reverse (negative) esc.RawCommand as 0");
   ++counters_.esc_frames;
   bus_->publish(config_.actuator_channel, out);
+  last_actuator_ = out;
+  have_actuator_ = true;
+}
+
+void BridgeNode::on_grant(int64_t utime_us) {
+  // The runtime's own subscription has moved this node's clock already; the sensor frames of
+  // this time went out when its state came (the state precedes its grant on the bus).
+  ++counters_.clock_grants;
+  SimClock clock;
+  clock.utime_us = static_cast<uint64_t>(std::max<int64_t>(utime_us, 0));
+  publish_can(clock, kPriorityHigh);
+  if (utime_us == last_grant_us_ && have_actuator_) bus_->publish(config_.actuator_channel, last_actuator_);
+  last_grant_us_ = utime_us;
 }
 
 void BridgeNode::on_status(const FcStatus& status) {
@@ -193,23 +211,5 @@ void BridgeNode::update_health() {
   dronecan_.set_health(stale ? NodeStatus::kHealthWarning : NodeStatus::kHealthOk);
 }
 
-BridgeNodeCounters BridgeNode::counters() const {
-  BridgeNodeCounters c;
-  c.states = counters_.states;
-  c.states_rejected = counters_.states_rejected;
-  c.imu = counters_.imu;
-  c.gnss = counters_.gnss;
-  c.baro = counters_.baro;
-  c.mag = counters_.mag;
-  c.battery = counters_.battery;
-  c.esc_frames = counters_.esc_frames;
-  c.esc_rejected = counters_.esc_rejected;
-  c.esc_clamped = counters_.esc_clamped;
-  c.commands = counters_.commands;
-  c.commands_nonfinite = counters_.commands_nonfinite;
-  c.statuses = counters_.statuses;
-  c.can_publish_failures = counters_.can_publish_failures;
-  return c;
-}
 
 }  // namespace a3::bridge

@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <string>
 
+#include "a3lcm/actuator_cmd_t.hpp"
 #include "a3lcm/fc_command_t.hpp"
 #include "a3lcm/vehicle_state_t.hpp"
 #include "bridge/can/can_bus.hpp"
@@ -56,20 +57,12 @@ struct BridgeNodeConfig {
   std::string actuator_channel;   // default A3_ACTUATORS
   std::string command_channel;    // default A3_FC_CMD
   std::string status_channel;     // default A3_FC_STATUS
+  // Lockstep (DESIGN.md "Time"): forward each A3_CLOCK grant to the flight controller as an
+  // a3.sim.Clock frame, after the sensor frames of that time; on a repeated grant, publish the
+  // last A3_ACTUATORS again (the pacer repeats a grant it has no answer to).
+  bool forward_sim_clock = false;
 };
 
-struct BridgeNodeCounters {
-  uint64_t states = 0;
-  uint64_t states_rejected = 0;   // NaN, non-unit attitude, or out of order
-  uint64_t imu = 0, gnss = 0, baro = 0, mag = 0, battery = 0;
-  uint64_t esc_frames = 0;        // RawCommands turned into A3_ACTUATORS
-  uint64_t esc_rejected = 0;      // fewer than 4 rotors
-  uint64_t esc_clamped = 0;       // a negative (reverse) rotor command, taken as 0
-  uint64_t commands = 0;          // A3_FC_CMD forwarded (heartbeats included)
-  uint64_t commands_nonfinite = 0;
-  uint64_t statuses = 0;          // a3.fc.Status forwarded to A3_FC_STATUS
-  uint64_t can_publish_failures = 0;
-};
 
 class BridgeNode final : public common::Node {
  public:
@@ -82,7 +75,12 @@ class BridgeNode final : public common::Node {
   // Stops receiving and the timers (the executor's thread, or after it stopped).
   void stop();
 
-  BridgeNodeCounters counters() const;  // safe from any thread
+  // states, states_rejected (NaN, non-unit attitude, or out of order), imu, gnss, baro, mag,
+  // battery, esc_frames (RawCommands turned into A3_ACTUATORS), esc_rejected (fewer than 4
+  // rotors), esc_clamped (a negative rotor command, taken as 0), commands (A3_FC_CMD forwarded,
+  // heartbeats included), commands_nonfinite, statuses (a3.fc.Status forwarded),
+  // can_publish_failures, clock_grants (lockstep grants forwarded as a3.sim.Clock).
+  const common::CounterSet& counters() const override { return counter_set_; }
   const DroneCanNode& dronecan() const { return dronecan_; }
 
  private:
@@ -90,6 +88,7 @@ class BridgeNode final : public common::Node {
   void on_command(const a3lcm::fc_command_t& command);
   void on_esc(const EscRawCommand& esc);
   void on_status(const FcStatus& status);
+  void on_grant(int64_t utime_us);
   void publish_sensors(const a3lcm::vehicle_state_t& state);
   template <class Msg>
   void publish_can(const Msg& msg, uint8_t priority);
@@ -112,11 +111,22 @@ class BridgeNode final : public common::Node {
   double average_power_W_ = 0.0;
   bool have_power_ = false;
 
-  struct AtomicCounters {
-    std::atomic<uint64_t> states{0}, states_rejected{0}, imu{0}, gnss{0}, baro{0}, mag{0}, battery{0},
-        esc_frames{0}, esc_rejected{0}, esc_clamped{0}, commands{0}, commands_nonfinite{0}, statuses{0},
-        can_publish_failures{0};
-  } counters_;
+  bool have_actuator_ = false;
+  a3lcm::actuator_cmd_t last_actuator_{};
+  int64_t last_grant_us_ = -1;
+
+  common::CounterSet counter_set_;
+  struct Counters {
+    explicit Counters(common::CounterSet& s)
+        : states(s.add("states")), states_rejected(s.add("states_rejected")), imu(s.add("imu")),
+          gnss(s.add("gnss")), baro(s.add("baro")), mag(s.add("mag")), battery(s.add("battery")),
+          esc_frames(s.add("esc_frames")), esc_rejected(s.add("esc_rejected")), esc_clamped(s.add("esc_clamped")),
+          commands(s.add("commands")), commands_nonfinite(s.add("commands_nonfinite")),
+          statuses(s.add("statuses")), can_publish_failures(s.add("can_publish_failures")),
+          clock_grants(s.add("clock_grants")) {}
+    common::Counter &states, &states_rejected, &imu, &gnss, &baro, &mag, &battery, &esc_frames, &esc_rejected,
+        &esc_clamped, &commands, &commands_nonfinite, &statuses, &can_publish_failures, &clock_grants;
+  } counters_{counter_set_};
 };
 
 }  // namespace a3::bridge

@@ -110,6 +110,12 @@ void FcNode::start(common::Executor& executor, common::Bus&) {
   executor_ = &executor;
   subscribe_sensors();
   dronecan_.subscribe<FcCommand>([this](const FcCommand& c, const ReceivedTransfer&) { on_command(c); });
+  if (sim_clock_ != nullptr) {
+    dronecan_.subscribe<SimClock>([this](const SimClock& m, const ReceivedTransfer&) {
+      ++counters_.clock_grants;
+      sim_clock_->advance_to(static_cast<int64_t>(m.utime_us));
+    });
+  }
   dronecan_.publish_node_status_every(kNodeStatusPeriod_us);
   dronecan_.set_mode(NodeStatus::kModeInitialization);
   dronecan_.start(executor);
@@ -204,23 +210,6 @@ void FcNode::update_health() {
                                                     static_cast<unsigned>(s.failsafe)));
 }
 
-FcNodeCounters FcNode::counters() const {
-  FcNodeCounters c;
-  c.steps = counters_.steps;
-  c.esc_published = counters_.esc_published;
-  c.status_published = counters_.status_published;
-  c.commands = counters_.commands;
-  c.heartbeats = counters_.heartbeats;
-  c.commands_refused = counters_.commands_refused;
-  c.commands_repeated = counters_.commands_repeated;
-  c.imu = counters_.imu;
-  c.gnss = counters_.gnss;
-  c.baro = counters_.baro;
-  c.mag = counters_.mag;
-  c.battery = counters_.battery;
-  c.sensor_rejected = counters_.sensor_rejected;
-  return c;
-}
 
 FlightStatus FcNode::status_snapshot() const {
   std::lock_guard<std::mutex> lock(status_mutex_);

@@ -9,7 +9,8 @@
 // estimator has attitude and position). Every command, a heartbeat too, keeps the command
 // link alive; a command repeated with the same seq is not executed twice. An accepted command
 // runs a control step at once (step_on_command), so its first ESC frame does not wait for the
-// next tick. The estimator times IMU samples by their integration intervals, not by when their
+// next tick. In lockstep its clock is the last a3.sim.Clock from the bridge (follow_sim_clock).
+// The estimator times IMU samples by their integration intervals, not by when their
 // frames arrived. It never touches LCM: start()'s bus is not used.
 #pragma once
 
@@ -24,6 +25,7 @@
 #include "bridge/dronecan/node.hpp"
 #include "bridge/fc/flight_controller.hpp"
 #include "bridge/fc/geo.hpp"
+#include "common/clock.hpp"
 #include "common/node.hpp"
 
 namespace a3::bridge {
@@ -37,17 +39,6 @@ struct FcNodeConfig {
   int64_t sensor_timeout_us = 200'000;  // a sensor silent this long makes health WARNING
 };
 
-struct FcNodeCounters {
-  uint64_t steps = 0;
-  uint64_t esc_published = 0;
-  uint64_t status_published = 0;
-  uint64_t commands = 0;          // a3.fc.Command received (heartbeats included)
-  uint64_t heartbeats = 0;
-  uint64_t commands_refused = 0;
-  uint64_t commands_repeated = 0;  // same seq as the last one: not executed again
-  uint64_t imu = 0, gnss = 0, baro = 0, mag = 0, battery = 0;
-  uint64_t sensor_rejected = 0;   // sensor messages with unusable values (NaN, no fix, range)
-};
 
 class FcNode final : public common::Node {
  public:
@@ -60,8 +51,16 @@ class FcNode final : public common::Node {
   // Stops receiving and the timers (the executor's thread, or after it stopped).
   void stop();
 
+  // Lockstep (DESIGN.md "Time"): the node's clock stands at the last a3.sim.Clock received on
+  // CAN; before start(), with the stepped clock of the executor the node runs on.
+  void follow_sim_clock(common::SteppedClock* clock) { sim_clock_ = clock; }
+
+  // steps, esc_published, status_published, commands (a3.fc.Command received, heartbeats
+  // included), heartbeats, commands_refused, commands_repeated (same seq: not executed again),
+  // imu, gnss, baro, mag, battery, sensor_rejected (unusable values: NaN, no fix, range),
+  // clock_grants (a3.sim.Clock received).
+  const common::CounterSet& counters() const override { return counter_set_; }
   // Safe from any thread.
-  FcNodeCounters counters() const;
   FlightStatus status_snapshot() const;
   // The node's own thread only (or after it stopped).
   const FlightController& controller() const { return fc_; }
@@ -90,11 +89,18 @@ class FcNode final : public common::Node {
   int64_t last_imu_us_ = -1, last_gnss_us_ = -1, last_baro_us_ = -1;
   double imu_time_s_ = -1.0, last_imu_rx_s_ = 0.0;
 
-  struct AtomicCounters {
-    std::atomic<uint64_t> steps{0}, esc_published{0}, status_published{0}, commands{0}, heartbeats{0},
-        commands_refused{0}, commands_repeated{0}, imu{0}, gnss{0}, baro{0}, mag{0}, battery{0},
-        sensor_rejected{0};
-  } counters_;
+  common::SteppedClock* sim_clock_ = nullptr;
+  common::CounterSet counter_set_;
+  struct Counters {
+    explicit Counters(common::CounterSet& s)
+        : steps(s.add("steps")), esc_published(s.add("esc_published")), status_published(s.add("status_published")),
+          commands(s.add("commands")), heartbeats(s.add("heartbeats")), commands_refused(s.add("commands_refused")),
+          commands_repeated(s.add("commands_repeated")), imu(s.add("imu")), gnss(s.add("gnss")),
+          baro(s.add("baro")), mag(s.add("mag")), battery(s.add("battery")),
+          sensor_rejected(s.add("sensor_rejected")), clock_grants(s.add("clock_grants")) {}
+    common::Counter &steps, &esc_published, &status_published, &commands, &heartbeats, &commands_refused,
+        &commands_repeated, &imu, &gnss, &baro, &mag, &battery, &sensor_rejected, &clock_grants;
+  } counters_{counter_set_};
   mutable std::mutex status_mutex_;
   FlightStatus status_copy_;
 };

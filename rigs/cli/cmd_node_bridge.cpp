@@ -35,17 +35,9 @@ struct BridgeArgs {
 };
 
 void report(const bridge::BridgeNode& node, const bridge::CanBus& can, double sim_s) {
-  const auto c = node.counters();
   const auto cs = can.stats();
-  std::fprintf(stderr,
-               "t=%8.1f s  states %llu (dropped %llu)  sent imu %llu gnss %llu baro %llu mag %llu battery %llu  "
-               "esc %llu (dropped %llu)  commands %llu  statuses %llu  CAN sent %llu received %llu refused %llu\n",
-               sim_s, static_cast<unsigned long long>(c.states), static_cast<unsigned long long>(c.states_rejected),
-               static_cast<unsigned long long>(c.imu), static_cast<unsigned long long>(c.gnss),
-               static_cast<unsigned long long>(c.baro), static_cast<unsigned long long>(c.mag),
-               static_cast<unsigned long long>(c.battery), static_cast<unsigned long long>(c.esc_frames),
-               static_cast<unsigned long long>(c.esc_rejected), static_cast<unsigned long long>(c.commands),
-               static_cast<unsigned long long>(c.statuses), static_cast<unsigned long long>(cs.frames_sent),
+  std::fprintf(stderr, "t=%8.1f s  %s  CAN sent %llu received %llu refused %llu\n", sim_s,
+               common::to_text(node.counters()).c_str(), static_cast<unsigned long long>(cs.frames_sent),
                static_cast<unsigned long long>(cs.frames_received), static_cast<unsigned long long>(cs.send_refused));
 }
 

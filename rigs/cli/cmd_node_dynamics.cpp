@@ -87,20 +87,13 @@ int run_dynamics(const DynamicsArgs& args) {
     if (!thread.failure().empty()) break;
     const int64_t wall_ns = common::WallClock::monotonic_now_ns();
     if ((wall_ns - wall_prev_ns) * 1e-9 >= args.report_every_s || (args.duration_s > 0 && sim_s >= args.duration_s)) {
-      const auto c = node.counters();
-      const double window_sim_s = (c.steps - steps0) / args.rate_hz;
+      const uint64_t steps = node.counters().get("steps");
+      const double window_sim_s = (steps - steps0) / args.rate_hz;
       const double window_wall_s = (wall_ns - wall_prev_ns) * 1e-9;
       const auto& s = node.integrator().state();
-      std::fprintf(stderr,
-                   "t=%8.1f s  achieved real-time factor %.4f  z=%.2f m  steps %llu  commands %llu "
-                   "(rejected %llu, clamped %llu)  stale steps %llu\n",
-                   sim_s, window_sim_s / window_wall_s, s.p_W_m.z(),
-                   static_cast<unsigned long long>(c.steps),
-                   static_cast<unsigned long long>(c.commands_received),
-                   static_cast<unsigned long long>(c.commands_rejected),
-                   static_cast<unsigned long long>(c.commands_clamped),
-                   static_cast<unsigned long long>(c.stale_steps));
-      steps0 = c.steps;
+      std::fprintf(stderr, "t=%8.1f s  achieved real-time factor %.4f  z=%.2f m  %s\n", sim_s,
+                   window_sim_s / window_wall_s, s.p_W_m.z(), common::to_text(node.counters()).c_str());
+      steps0 = steps;
       wall_prev_ns = wall_ns;
     }
     if (args.duration_s > 0 && sim_s >= args.duration_s) break;

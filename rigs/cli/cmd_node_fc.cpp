@@ -62,20 +62,13 @@ bridge::FcNodeConfig fc_config_from(const FcArgs& args) {
 }
 
 void report(const bridge::FcNode& node, const bridge::CanBus& can, double sim_s) {
-  const auto c = node.counters();
   const bridge::FlightStatus s = node.status_snapshot();
   const auto cs = can.stats();
   std::fprintf(stderr,
-               "t=%8.1f s  %-11s %s failsafe %-11s p=(%.1f, %.1f, %.1f) m  battery %.0f %%  steps %llu  "
-               "sensors imu %llu gnss %llu baro %llu mag %llu (dropped %llu)  commands %llu (refused %llu)  "
+               "t=%8.1f s  %-11s %s failsafe %-11s p=(%.1f, %.1f, %.1f) m  battery %.0f %%  %s  "
                "CAN sent %llu received %llu refused %llu\n",
                sim_s, bridge::to_string(s.mode), s.armed ? "armed   " : "disarmed", bridge::to_string(s.failsafe),
-               s.p_W_m.x(), s.p_W_m.y(), s.p_W_m.z(), s.battery_pct, static_cast<unsigned long long>(c.steps),
-               static_cast<unsigned long long>(c.imu), static_cast<unsigned long long>(c.gnss),
-               static_cast<unsigned long long>(c.baro), static_cast<unsigned long long>(c.mag),
-               static_cast<unsigned long long>(c.sensor_rejected),
-               static_cast<unsigned long long>(c.commands - c.heartbeats),
-               static_cast<unsigned long long>(c.commands_refused),
+               s.p_W_m.x(), s.p_W_m.y(), s.p_W_m.z(), s.battery_pct, common::to_text(node.counters()).c_str(),
                static_cast<unsigned long long>(cs.frames_sent), static_cast<unsigned long long>(cs.frames_received),
                static_cast<unsigned long long>(cs.send_refused));
 }

@@ -19,6 +19,7 @@
 #include "rigs/cli/signal_stop.hpp"
 #include "rigs/core/node_configs.hpp"
 #include "rigs/core/rig_nodes.hpp"
+#include "rigs/core/rig_threads.hpp"
 #include "rigs/core/shared_dir.hpp"
 
 namespace a3::rigs {
@@ -45,6 +46,7 @@ int run_part(PartArgs& args) {
     can = bridge::open_can_bus(o.can);
     (part == RigPart::kBridge ? buses.can_bridge : buses.can_fc) = can.get();
   }
+  std::unique_ptr<RigThreads> threads;  // outlives the nodes: their destructors cancel timers on it
   RigNodes nodes = make_rig_nodes({part}, configs, o, scenario, buses, false);
 
   int64_t epoch_ns = -1;
@@ -59,24 +61,18 @@ int run_part(PartArgs& args) {
     }
     epoch_ns = std::stoll(go.substr(3));
   }
-  const common::WallClock clock(o.real_time_factor, epoch_ns);
-  std::vector<std::unique_ptr<common::RealTimeNodeThread>> threads;
-  for (common::Node* node : nodes.in_start_order()) {
-    threads.push_back(std::make_unique<common::RealTimeNodeThread>(*node, clock, o.lcm_url));
-  }
-  for (auto& th : threads) th->start();
+  if (epoch_ns < 0) epoch_ns = common::WallClock::monotonic_now_ns();
+  threads = std::make_unique<RigThreads>(nodes, configs, o, o.lcm_url, epoch_ns);
+  threads->start();
   int status = 0;
   while (!stop_requested() && status == 0) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    for (std::size_t i = 0; i < threads.size(); ++i) {
-      if (!threads[i]->failure().empty()) {
-        std::fprintf(stderr, "[error] node part %s: %s failed: %s\n", args.part.c_str(),
-                     nodes.in_start_order()[i]->name().c_str(), threads[i]->failure().c_str());
-        status = 1;
-      }
+    if (const std::string why = threads->failure(); !why.empty()) {
+      std::fprintf(stderr, "[error] node part %s: %s\n", args.part.c_str(), why.c_str());
+      status = 1;
     }
   }
-  for (auto it = threads.rbegin(); it != threads.rend(); ++it) (*it)->stop_and_join();
+  threads->stop_all();
   return status;
 }
 
@@ -97,6 +93,8 @@ A3_REGISTER_COMMAND("90-node-part", [](CLI::App& app) {
   cmd->add_option("--slice", o.slice, "as for `a3rig run`");
   cmd->add_option("--rtf", o.real_time_factor, "simulated seconds per wall second (default 1)")->check(CLI::PositiveNumber);
   cmd->add_option("--lcm-url", o.lcm_url, "LCM URL shared by every part of the run")->required();
+  cmd->add_option("--sync", o.sync, "lockstep (default) or free, as for `a3rig run`")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, Sync>{{"lockstep", Sync::kLockstep}, {"free", Sync::kFree}}));
   cmd->add_option("--can", o.can, "CAN bus between bridge and fc: userspace:NAME, vcan0, can0, ...");
   cmd->add_option("--integrator", o.integrator, "cvode (default) or ode")->check(CLI::IsMember({"cvode", "ode"}));
   cmd->add_option("--dynamics-rate-hz", o.dynamics_rate_hz, "dynamics step rate (default 250)")->check(CLI::PositiveNumber);

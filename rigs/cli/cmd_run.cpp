@@ -15,6 +15,7 @@
 #include "rigs/cli/command_registry.hpp"
 #include "rigs/cli/signal_stop.hpp"
 #include "rigs/core/node_configs.hpp"
+#include "rigs/core/realtime_report.hpp"
 #include "rigs/core/rig_runner.hpp"
 #include "rigs/core/shared_dir.hpp"
 
@@ -86,6 +87,9 @@ int run(RunArgs& args) {
               o.runtime == Runtime::kVirtual
                   ? (std::to_string(static_cast<int>(r.mission_time_s / std::max(r.wall_time_s, 1e-9))) + "x faster than real time").c_str()
                   : ("achieved real-time factor " + std::to_string(r.achieved_real_time_factor)).c_str());
+  if (r.episode.contains("_rig") && r.episode["_rig"].contains("realtime")) {
+    std::printf("real time: %s\n", realtime_summary(r.episode["_rig"]["realtime"]).c_str());
+  }
   std::printf("success: %s\n", r.episode.value("success", false) ? "true" : "false");
   if (check.status == eval::EpisodeStatus::kValid) {
     const eval::Pillars p = eval::score_pillars(check.facts, profile, profile.optimal_turns);
@@ -95,9 +99,7 @@ int run(RunArgs& args) {
     std::printf("the episode is not a valid α³-Bench episode (α³ = 0):\n");
     for (const auto& v : check.violations) std::printf("  %s\n", eval::to_string(v).c_str());
   }
-  if (r.status == "interrupted") return 3;
-  if (r.status.rfind("node_failed", 0) == 0) return 4;
-  return 0;
+  return run_exit_status(r.status);
 }
 
 }  // namespace
@@ -110,7 +112,12 @@ A3_REGISTER_COMMAND("10-run", [](CLI::App& app) {
       "agent's tool calls cross the emulated 6G link to the vehicle, the flight controller flies over CAN, and the "
       "episode is written (episode.json in the α³-Bench format, an LCM log, a trajectory plot) and scored. Exit "
       "status: 0 the episode was written, 2 bad usage or input, 3 interrupted (episode written), 4 a node failed "
-      "(episode written).\n"
+      "or froze (episode written), 5 the real-time contract was broken (status realtime_violated: the host could "
+      "not keep the requested pace; episode written with its accounting in _rig.realtime).\n"
+      "Real time: by default the vehicle's nodes run in lockstep (--sync lockstep): simulated time never passes a "
+      "flight-controller step that has not been computed, so a loaded host slows simulated time down instead of "
+      "breaking the physics; --sync free runs every node on the wall clock (for a real flight controller on a real "
+      "CAN bus), where lateness is measured and reported.\n"
       "--agent llm asks an OpenAI-compatible endpoint (hosted API, OpenRouter, vLLM, llama.cpp, Ollama, or "
       "`a3rig serve-model`) for every agent turn; its API key is read only from the environment, never from the "
       "command line: A3_LLM_API_KEY, else the first line of the file named by A3_LLM_API_KEY_FILE, else "
@@ -147,6 +154,10 @@ A3_REGISTER_COMMAND("10-run", [](CLI::App& app) {
   cmd->add_option("--out", args->out, "output folder (default out/run)");
   cmd->add_option("--rtf", o.real_time_factor, "real time: simulated seconds per wall second (default 1)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--sync", o.sync,
+                  "real time: lockstep (default: dynamics, bridge and flight controller advance together, paced by "
+                  "the wall clock at --rtf) or free (every node on the wall clock; for a real flight controller)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, Sync>{{"lockstep", Sync::kLockstep}, {"free", Sync::kFree}}));
   cmd->add_option("--lcm-url", o.lcm_url,
                   "real time: LCM URL (default $LCM_DEFAULT_URL, else a port of its own on udpm://239.255.76.67, "
                   "ttl=0, printed at the start: give it to lcm-spy)");

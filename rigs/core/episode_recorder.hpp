@@ -1,11 +1,13 @@
 // The episode recorder: listens to everything an episode is made of — completed turns and the
 // end of the dialogue (A3_EPISODE), measured safety events (A3_SAFETY), one record per link
 // message (A3_LINK_RECORD), the true trajectory (A3_STATE), the flight controller (A3_FC_STATUS)
-// and payload events (A3_PAYLOAD) — and keeps what the episode file needs: the turns, the
+// payload events (A3_PAYLOAD), every node's statistics (A3_NODE_STATS) and the lockstep grants
+// (A3_CLOCK) — and keeps what the episode file needs: the turns, the
 // events, link statistics, a 1 Hz trajectory and the last state. It also tracks the mission's
 // objectives (success is what really happened). Snapshots are safe from any thread.
 #pragma once
 
+#include <map>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -24,6 +26,15 @@ struct LinkDirectionStats {
   uint64_t messages = 0, delivered = 0, lost = 0, dropped = 0;
   uint64_t bytes = 0;
   double delay_sum_ms = 0.0, delay_max_ms = 0.0;
+};
+
+// The last node_stats_t a node published (A3_NODE_STATS).
+struct NodeStatsRecord {
+  nlohmann::json stats;        // common::node_stats_json: {"counters": {...}, "timing": {...}}
+  int64_t wall_utime_us = 0;   // CLOCK_MONOTONIC when published
+  int64_t utime_us = 0;        // simulated time when published
+  int32_t pid = 0;
+  bool final = false;
 };
 
 struct RecordedEpisode {
@@ -46,6 +57,9 @@ struct RecordedEpisode {
   nlohmann::json objectives;              // MissionTracker::to_json()
   bool objectives_all_done = false;
   uint64_t states = 0;
+  std::map<std::string, NodeStatsRecord> nodes;  // by node name
+  int64_t last_grant_utime_us = -1;              // lockstep: the last A3_CLOCK grant heard
+  double last_grant_achieved_rtf = 0.0;
 };
 
 class EpisodeRecorderNode final : public common::Node {

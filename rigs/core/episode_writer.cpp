@@ -139,6 +139,7 @@ nlohmann::json build_episode(const Scenario& s, const RunOptions& o, const Recor
                         {"max_speed_mps", rec.max_speed_mps},
                         {"crashed", crashed}}},
         {"counters", f.counters}}}};
+  if (!f.realtime.is_null()) episode["_rig"]["realtime"] = f.realtime;
   if (!llm.model.empty()) {
     episode["_meta"]["model"] = llm.model;
     episode["_meta"]["provider"] = llm.provider;

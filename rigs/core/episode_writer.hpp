@@ -24,6 +24,7 @@ struct RunFacts {
   double achieved_real_time_factor = 0.0;
   int64_t start_unix_us = 0;
   nlohmann::json counters = nlohmann::json::object();
+  nlohmann::json realtime;       // real time: rigs/core/realtime_report.hpp (null in virtual time)
 };
 
 nlohmann::json build_episode(const Scenario& scenario, const RunOptions& options, const RecordedEpisode& rec,

@@ -41,7 +41,7 @@ void LcmLogNode::start(common::Executor& executor, common::Bus& bus) {
       std::lock_guard<std::mutex> lock(mutex_);
       if (!log_) return;
       lcm::LogEvent ev;
-      ev.eventnum = static_cast<int64_t>(events_++);
+      ev.eventnum = static_cast<int64_t>(events_.add() - 1);
       ev.timestamp = executor_->clock().now_us();
       ev.channel = ch;
       ev.datalen = static_cast<int32_t>(size);

@@ -26,6 +26,8 @@ class LcmLogNode final : public common::Node {
   std::string name() const override { return "lcm_log"; }
   void start(common::Executor& executor, common::Bus& bus) override;
   uint64_t events() const;
+  // events (messages written to the log).
+  const common::CounterSet& counters() const override { return counter_set_; }
   void close();
 
  private:
@@ -33,7 +35,8 @@ class LcmLogNode final : public common::Node {
   mutable std::mutex mutex_;
   std::unique_ptr<lcm::LogFile> log_;
   common::Executor* executor_ = nullptr;
-  uint64_t events_ = 0;
+  common::CounterSet counter_set_;
+  common::Counter& events_ = counter_set_.add("events");
 };
 
 }  // namespace a3::rigs

@@ -6,17 +6,10 @@
 #include <initializer_list>
 #include <stdexcept>
 
+#include "common/node_stats.hpp"
+
 namespace a3::rigs {
 namespace {
-
-nlohmann::json direction_json(const linkemu::DirectionStats& d) {
-  nlohmann::json dropped = nlohmann::json::object();
-  for (std::size_t r = 0; r < linkemu::kDropReasonCount; ++r) {
-    dropped[linkemu::to_string(static_cast<linkemu::DropReason>(r))] = d.dropped[r];
-  }
-  return {{"received", d.received}, {"delivered", d.delivered}, {"lost", d.lost}, {"dropped", dropped},
-          {"bytes_delivered", d.bytes_delivered}};
-}
 
 bool has(const std::vector<RigPart>& parts, RigPart p) { return std::find(parts.begin(), parts.end(), p) != parts.end(); }
 
@@ -60,30 +53,10 @@ std::vector<common::Node*> RigNodes::in_start_order() const {
 
 nlohmann::json RigNodes::counters() const {
   nlohmann::json out = nlohmann::json::object();
-  if (dynamics) {
-    const auto d = dynamics->counters();
-    out["dynamics"] = {{"steps", d.steps}, {"commands", d.commands_received}, {"rejected", d.commands_rejected},
-                       {"clamped", d.commands_clamped}, {"stale_steps", d.stale_steps}};
+  for (const common::Node* node : in_start_order()) {
+    const nlohmann::json c = common::node_stats_json(node->counters(), {})["counters"];
+    if (!c.empty()) out[node->name()] = c;
   }
-  if (conversation) {
-    const auto c = conversation->counters();
-    out["conversation"] = {{"actions_sent", c.actions_sent}, {"observations", c.observations}, {"timeouts", c.timeouts},
-                           {"stale_observations", c.stale_observations}, {"heartbeats", c.heartbeats}};
-  }
-  if (tools) {
-    const auto t = tools->counters();
-    out["tool_server"] = {{"link_messages", t.link_messages}, {"malformed_dropped", t.malformed_dropped},
-                          {"mcp_calls", t.mcp_calls}, {"a2a_messages", t.a2a_messages}, {"errors", t.errors},
-                          {"gate_refusals", t.gate_refusals}, {"fc_commands", t.fc_commands},
-                          {"fc_refusals", t.fc_refusals}, {"timeouts", t.timeouts},
-                          {"routes_completed", t.routes_completed}, {"images_captured", t.images_captured},
-                          {"image_bytes_downlinked", t.image_bytes_downlinked}};
-  }
-  if (link) {
-    out["link"] = {{"up", direction_json(link->stats().up)}, {"down", direction_json(link->stats().down)},
-                   {"slice_switch_requests", link->stats().slice_switch_requests}};
-  }
-  if (recorder) out["lcm_log_events"] = log ? log->events() : 0;
   return out;
 }
 

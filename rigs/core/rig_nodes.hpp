@@ -49,7 +49,8 @@ struct RigNodes {
 
   // The nodes built, recorders first, the conversation last.
   std::vector<common::Node*> in_start_order() const;
-  // Counters of the nodes built (a part in another process has none here).
+  // Counters of the nodes built, {node name: counters} as node_stats_json gives them (a part
+  // in another process has none here: its counters come over the bus).
   nlohmann::json counters() const;
 };
 

@@ -28,7 +28,7 @@ std::string format_double(double v) {
 std::vector<std::string> RigProcesses::child_arguments(RigPart part, const RunOptions& o, const std::string& lcm_url,
                                                        const std::string& can_spec) {
   std::vector<std::string> args = {"node", "part", to_string(part), "--scenario", o.scenario,
-                                   "--seed", std::to_string(o.seed), "--rtf", format_double(o.real_time_factor),
+                                   "--seed", std::to_string(o.seed), "--rtf", format_double(o.real_time_factor), "--sync", to_string(o.sync),
                                    "--lcm-url", lcm_url, "--can", can_spec, "--integrator", o.integrator,
                                    "--dynamics-rate-hz", format_double(o.dynamics_rate_hz),
                                    "--shared-dir", o.shared_dir.string()};

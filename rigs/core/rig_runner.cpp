@@ -21,7 +21,9 @@
 #include "rigs/core/lcm_log_node.hpp"
 #include "rigs/core/node_configs.hpp"
 #include "rigs/core/rig_nodes.hpp"
+#include "rigs/core/realtime_report.hpp"
 #include "rigs/core/rig_processes.hpp"
+#include "rigs/core/rig_threads.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -81,22 +83,31 @@ struct Reporter {
   }
 };
 
-RunResult finish(const Scenario& s, const RunOptions& o, RigNodes& n, const std::string& status, double mission_s,
-                 double wall_s, int64_t start_unix_us, const ProgressFn& progress) {
+struct RunEnd {
+  std::string status;
+  double mission_s = 0.0;
+  double wall_s = 0.0;
+  nlohmann::json counters;   // {node: counters}
+  nlohmann::json realtime;   // real time only
+};
+
+RunResult finish(const Scenario& s, const RunOptions& o, RigNodes& n, const RunEnd& end, int64_t start_unix_us,
+                 const ProgressFn& progress) {
   RunResult result;
-  result.status = status;
-  result.mission_time_s = mission_s;
-  result.wall_time_s = wall_s;
-  result.achieved_real_time_factor = wall_s > 0.0 ? mission_s / wall_s : 0.0;
+  result.status = end.status;
+  result.mission_time_s = end.mission_s;
+  result.wall_time_s = end.wall_s;
+  result.achieved_real_time_factor = end.wall_s > 0.0 ? end.mission_s / end.wall_s : 0.0;
   const RecordedEpisode rec = n.recorder->snapshot();
   RunFacts facts;
-  facts.status = status;
+  facts.status = end.status;
   facts.agent_name = n.conversation ? "a3rig/" + o.agent : o.agent;
-  facts.mission_time_s = mission_s;
-  facts.wall_time_s = wall_s;
+  facts.mission_time_s = end.mission_s;
+  facts.wall_time_s = end.wall_s;
   facts.achieved_real_time_factor = o.runtime == Runtime::kReal ? result.achieved_real_time_factor : 0.0;
   facts.start_unix_us = start_unix_us;
-  facts.counters = n.counters();
+  facts.counters = end.counters;
+  facts.realtime = end.realtime;
   if (n.log) n.log->close();
   result.episode = build_episode(s, o, rec, facts);
   write_episode(o.out_dir, result.episode);
@@ -104,7 +115,8 @@ RunResult finish(const Scenario& s, const RunOptions& o, RigNodes& n, const std:
   if (o.write_plot) result.plot_problem = write_trajectory_plot(o.out_dir, s, rec);
   if (progress) {
     char text[200];
-    std::snprintf(text, sizeof text, "episode ended: %s after %.1f s of mission (%.1f s wall)", status.c_str(), mission_s, wall_s);
+    std::snprintf(text, sizeof text, "episode ended: %s after %.1f s of mission (%.1f s wall)", end.status.c_str(),
+                  end.mission_s, end.wall_s);
     progress(text);
   }
   return result;
@@ -157,8 +169,57 @@ RunResult run_virtual(const Scenario& s, const RunOptions& o, const RigConfigs& 
   } catch (const std::exception& e) {
     status = std::string("node_failed: ") + e.what();
   }
-  const double wall = std::chrono::duration<double>(SteadyClock::now() - wall0).count();
-  return finish(s, o, n, status, t, wall, unix0, progress);
+  RunEnd end{status, t, std::chrono::duration<double>(SteadyClock::now() - wall0).count(), n.counters(), nullptr};
+  return finish(s, o, n, end, unix0, progress);
+}
+
+// A node whose statistics stop coming for this long (wall time) is frozen or gone.
+constexpr double kNodeSilence_s = 5.0;
+
+std::string silent_node(const RecordedEpisode& r) {
+  const double now_us = static_cast<double>(common::WallClock::monotonic_now_ns()) * 1e-3;
+  for (const auto& [name, n] : r.nodes) {
+    if (!n.final && now_us - static_cast<double>(n.wall_utime_us) > kNodeSilence_s * 1e6) {
+      return name + " (pid " + std::to_string(n.pid) + ") is unresponsive: no statistics for " +
+             std::to_string(static_cast<int>(kNodeSilence_s)) + " s of wall time";
+    }
+  }
+  return "";
+}
+
+// Waits (a little) until every node that reported has sent its final statistics.
+void await_final_stats(const EpisodeRecorderNode& recorder, double timeout_s) {
+  const auto deadline = SteadyClock::now() + std::chrono::duration<double>(timeout_s);
+  while (SteadyClock::now() < deadline) {
+    bool all_final = true;
+    for (const auto& [name, n] : recorder.snapshot().nodes) all_final &= n.final || name == recorder.name();
+    if (all_final) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
+std::string status_line(double mission_s, double wall_s, const RecordedEpisode& r) {
+  char text[300];
+  std::snprintf(text, sizeof text, "t=%.0f s  z=%.1f m  battery %.0f %%  slice %s  real-time factor %.3f", mission_s,
+                r.last_state.p_W_m[2], r.last_state.battery_pct, r.last_slice.c_str(), mission_s / wall_s);
+  std::string line = text;
+  if (auto it = r.nodes.find("dynamics"); it != r.nodes.end() && it->second.stats.contains("timing")) {
+    const auto& t = it->second.stats["timing"];
+    if (t.contains("lockstep_waits")) {
+      std::snprintf(text, sizeof text, "  lockstep waits %.0f (%.2f s)", t.value("lockstep_waits", 0.0),
+                    t.value("lockstep_wait_total_s", 0.0));
+      line += text;
+    }
+  }
+  return line;
+}
+
+// The final status: what ended the run, unless the real-time contract broke (then the run,
+// not the agent, is at fault) or the user or a node ended it.
+std::string final_status(const std::string& ended, const nlohmann::json& realtime) {
+  if (ended == "interrupted" || ended.rfind("node_failed", 0) == 0) return ended;
+  const std::string why = realtime_violations(realtime);
+  return why.empty() ? ended : "realtime_violated: " + why;
 }
 
 RunResult run_real(const Scenario& s, const RunOptions& o, const RigConfigs& cfg, const ProgressFn& progress,
@@ -175,6 +236,8 @@ RunResult run_real(const Scenario& s, const RunOptions& o, const RigConfigs& cfg
   std::unique_ptr<bridge::CanBus> can_bridge, can_fc;
   std::unique_ptr<RigProcesses> children;
   std::vector<RigPart> in_process = all_parts();
+  // Declared before the nodes: a node's destructor cancels its timers on its thread's executor.
+  std::unique_ptr<RigThreads> threads;
   if (o.processes) {
     in_process = {RigPart::kGround};
     children = std::make_unique<RigProcesses>(o.a3rig_exe, rig_parts_outside_ground(), o, lcm_url, can_spec);
@@ -188,30 +251,32 @@ RunResult run_real(const Scenario& s, const RunOptions& o, const RigConfigs& cfg
     can_fc = bridge::open_can_bus(can_spec);
   }
   RigNodes n = make_rig_nodes(in_process, cfg, o, s, {can_bridge.get(), can_fc.get()}, agent_in_thread);
-  if (progress) progress("LCM: " + lcm_url + "  CAN: " + (can_bridge ? can_bridge->name() : can_spec));
-  const common::WallClock clock(o.real_time_factor, common::WallClock::monotonic_now_ns());
-  if (children) children->go(clock.epoch_mono_ns());
-  std::vector<std::unique_ptr<common::RealTimeNodeThread>> threads;
-  for (common::Node* node : n.in_start_order()) {
-    threads.push_back(std::make_unique<common::RealTimeNodeThread>(*node, clock, lcm_url));
+  if (progress) {
+    progress("LCM: " + lcm_url + "  CAN: " + (can_bridge ? can_bridge->name() : can_spec) + "  sync: " +
+             to_string(o.sync) + (o.sync == Sync::kLockstep ? " (the vehicle waits for its flight controller)" : ""));
   }
-  for (auto& th : threads) th->start();
+  const int64_t epoch_ns = common::WallClock::monotonic_now_ns();
+  threads = std::make_unique<RigThreads>(n, cfg, o, lcm_url, epoch_ns);
+  if (children) children->go(epoch_ns);
+  threads->start();
   Reporter report{progress};
+  WindowMeter windows;
   std::string status;
   double dialogue_end_s = -1.0, crash_s = -1.0, mission_s = 0.0;
   auto last_line = SteadyClock::now();
   while (status.empty()) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    mission_s = clock.now_s();
+    mission_s = threads->clock().now_s();
+    const double wall_s = std::chrono::duration<double>(SteadyClock::now() - wall0).count();
+    windows.sample(wall_s, mission_s);
     const RecordedEpisode r = n.recorder->snapshot();
     report(r);
-    for (std::size_t i = 0; i < threads.size() && status.empty(); ++i) {
-      if (!threads[i]->failure().empty()) {
-        status = "node_failed: " + n.in_start_order()[i]->name() + ": " + threads[i]->failure();
-      }
-    }
+    if (const std::string why = threads->failure(); !why.empty()) status = "node_failed: " + why;
     if (status.empty() && children) {
       if (const std::string why = children->check(); !why.empty()) status = "node_failed: " + why;
+    }
+    if (status.empty()) {
+      if (const std::string why = silent_node(r); !why.empty()) status = "node_failed: " + why;
     }
     const bool done = n.conversation->finished();
     if (done && dialogue_end_s < 0.0) dialogue_end_s = mission_s;
@@ -220,20 +285,32 @@ RunResult run_real(const Scenario& s, const RunOptions& o, const RigConfigs& cfg
     if (status.empty() && stop != nullptr && stop->load()) status = "interrupted";
     if (progress && SteadyClock::now() - last_line > std::chrono::seconds(10)) {
       last_line = SteadyClock::now();
-      const double wall = std::chrono::duration<double>(last_line - wall0).count();
-      char text[200];
-      std::snprintf(text, sizeof text, "t=%.0f s  z=%.1f m  battery %.0f %%  slice %s  real-time factor %.3f",
-                    mission_s, r.last_state.p_W_m[2], r.last_state.battery_pct, r.last_slice.c_str(), mission_s / wall);
-      progress(text);
+      progress(status_line(mission_s, wall_s, r));
     }
   }
+  const double wall_s = std::chrono::duration<double>(SteadyClock::now() - wall0).count();
   if (children) children->stop();
-  for (auto it = threads.rbegin(); it != threads.rend(); ++it) (*it)->stop_and_join();
-  const double wall = std::chrono::duration<double>(SteadyClock::now() - wall0).count();
-  return finish(s, o, n, status, mission_s, wall, unix0, progress);
+  threads->stop_all_but_first();
+  await_final_stats(*n.recorder, 1.0);
+  threads->stop_all();
+  const RecordedEpisode r = n.recorder->snapshot();
+  RunEnd end;
+  end.mission_s = mission_s;
+  end.wall_s = wall_s;
+  end.counters = counters_from_stats(r.nodes);
+  end.realtime = realtime_report(o, {mission_s, wall_s, windows.worst()}, r.nodes);
+  end.status = final_status(status, end.realtime);
+  return finish(s, o, n, end, unix0, progress);
 }
 
 }  // namespace
+
+int run_exit_status(const std::string& status) {
+  if (status == "interrupted") return 3;
+  if (status.rfind("node_failed", 0) == 0) return 4;
+  if (status.rfind("realtime_violated", 0) == 0) return 5;
+  return 0;
+}
 
 RunResult run_episode(const Scenario& s, const RunOptions& o, const ProgressFn& progress, const std::atomic<bool>* stop) {
   const RigConfigs cfg = make_rig_configs(s, o);

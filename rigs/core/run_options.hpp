@@ -8,6 +8,10 @@
 namespace a3::rigs {
 
 enum class Runtime { kVirtual, kReal };
+// Real time: the vehicle's nodes in lockstep with their flight controller (default), or
+// free-running on the wall clock (a real flight controller on a real bus). DESIGN.md "Time".
+enum class Sync { kLockstep, kFree };
+const char* to_string(Sync sync);
 
 struct RunOptions {
   std::string scenario = "survey-field";  // built-in name, file, or alphabench:<path>
@@ -25,6 +29,7 @@ struct RunOptions {
   uint64_t seed = 42;
   std::filesystem::path out_dir = "out/run";
   double real_time_factor = 1.0;
+  Sync sync = Sync::kLockstep;
   std::string lcm_url;                     // real time: default udpm ttl=0
   std::string can = "userspace";           // real time: userspace (private bus) or an interface (vcan0, can0)
   bool processes = false;                  // real time: every part but the ground side as a process of its own

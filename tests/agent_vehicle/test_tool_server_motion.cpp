@@ -35,7 +35,7 @@ TEST(ToolServerMotion, TakeoffSendsTakeoffAndAnswersWithTheFcsStatus) {
   EXPECT_DOUBLE_EQ(rig.fc.commands[0].target_W_m[2], 30.0);
   rig.run_for(20.0);
   EXPECT_NEAR(rig.fc.position().z(), 30.0, 1e-6);
-  EXPECT_EQ(rig.server.counters().fc_commands, 1u);
+  EXPECT_EQ(rig.server.counters().get("fc_commands"), 1u);
 }
 
 TEST(ToolServerMotion, SetWaypointFliesThereAndTheRouteCompletes) {
@@ -55,7 +55,7 @@ TEST(ToolServerMotion, SetWaypointFliesThereAndTheRouteCompletes) {
   EXPECT_DOUBLE_EQ(goto_cmd.speed_limit_mps, 8.0);
   rig.run_for(20.0);
   EXPECT_LT((rig.fc.position() - Eigen::Vector3d(100, 60, 50)).norm(), 1e-6);
-  EXPECT_EQ(rig.server.counters().routes_completed, 1u);
+  EXPECT_EQ(rig.server.counters().get("routes_completed"), 1u);
   EXPECT_EQ(rig.server.route(), nullptr);
 }
 
@@ -96,7 +96,7 @@ TEST(ToolServerMotion, TheGateRefusesUnsafeWaypointsWithAReasonAndNothingReaches
     EXPECT_TRUE(r["pose"].is_object());
   }
   EXPECT_EQ(rig.fc.commands.size(), commands_before);
-  EXPECT_EQ(rig.server.counters().gate_refusals, std::size(cases));
+  EXPECT_EQ(rig.server.counters().get("gate_refusals"), std::size(cases));
   ASSERT_EQ(rig.probe.safety.size(), std::size(cases));
   EXPECT_EQ(rig.probe.safety[0].kind, "gate_refusal");
   EXPECT_EQ(rig.probe.safety[0].source, "tool_server");
@@ -164,7 +164,7 @@ TEST(ToolServerMotion, BadCallsGetErrorObservationsNamingTheProblemAndNeverReach
         << c.action.dump() << " -> " << obs.dump();
   }
   EXPECT_EQ(rig.fc.commands.size(), before);
-  EXPECT_EQ(rig.server.counters().errors, std::size(cases));
+  EXPECT_EQ(rig.server.counters().get("errors"), std::size(cases));
 }
 
 TEST(ToolServerMotion, AnFcRefusalIsPassedOnWithItsReason) {
@@ -174,7 +174,7 @@ TEST(ToolServerMotion, AnFcRefusalIsPassedOnWithItsReason) {
   EXPECT_EQ(r["by"], "flight_controller");
   EXPECT_EQ(r["reason"], "not armed");
   EXPECT_EQ(r["mode"], "disarmed");
-  EXPECT_EQ(rig.server.counters().fc_refusals, 1u);
+  EXPECT_EQ(rig.server.counters().get("fc_refusals"), 1u);
   EXPECT_EQ(rig.server.route(), nullptr) << "a refused first leg ends the route";
 }
 
@@ -192,7 +192,7 @@ TEST(ToolServerMotion, NoStatusInTimeGivesATimeoutObservation) {
   EXPECT_EQ(obs["result"]["status"], "timeout") << obs.dump();
   EXPECT_NE(obs["result"]["reason"].get<std::string>().find("within 2.0 s"), std::string::npos);
   EXPECT_NEAR(rig.probe.down.back().t_s - sent_at, 2.0, 0.02);
-  EXPECT_EQ(rig.server.counters().timeouts, 1u);
+  EXPECT_EQ(rig.server.counters().get("timeouts"), 1u);
 }
 
 TEST(ToolServerMotion, NavigateToIsAnOnboardRouteFlownLegByLeg) {
@@ -214,7 +214,7 @@ TEST(ToolServerMotion, NavigateToIsAnOnboardRouteFlownLegByLeg) {
   }
   EXPECT_EQ(target_of(rig.fc.commands[before + 1]), Eigen::Vector3d(60, 80, 50));
   EXPECT_LT((rig.fc.position() - Eigen::Vector3d(100, 80, 50)).norm(), 1e-6);
-  EXPECT_EQ(rig.server.counters().routes_completed, 1u);
+  EXPECT_EQ(rig.server.counters().get("routes_completed"), 1u);
 }
 
 TEST(ToolServerMotion, TheGateChecksEveryLegOfARoute) {
@@ -242,8 +242,8 @@ TEST(ToolServerMotion, ANewMotionCommandCancelsARunningRoute) {
   const std::size_t after_hold = rig.fc.commands.size();
   rig.run_for(60.0);
   EXPECT_EQ(rig.fc.commands.size(), after_hold) << "no further legs";
-  EXPECT_EQ(rig.server.counters().routes_aborted, 1u);
-  EXPECT_EQ(rig.server.counters().routes_completed, 0u);
+  EXPECT_EQ(rig.server.counters().get("routes_aborted"), 1u);
+  EXPECT_EQ(rig.server.counters().get("routes_completed"), 0u);
 }
 
 TEST(ToolServerMotion, AnFcFailsafeEndsTheRoute) {
@@ -254,7 +254,7 @@ TEST(ToolServerMotion, AnFcFailsafeEndsTheRoute) {
   rig.fc.force_mode(a3lcm::fc_status_t::RETURN_HOME, a3lcm::fc_status_t::FAILSAFE_LOW_BATTERY);
   rig.run_for(0.2);
   EXPECT_EQ(rig.server.route(), nullptr);
-  EXPECT_EQ(rig.server.counters().routes_aborted, 1u);
+  EXPECT_EQ(rig.server.counters().get("routes_aborted"), 1u);
   const std::size_t n = rig.fc.commands.size();
   rig.run_for(60.0);
   EXPECT_EQ(rig.fc.commands.size(), n);
@@ -271,7 +271,7 @@ TEST(ToolServerMotion, AdjustSpeedDuringARouteKeepsItAndLaterLegsUseTheNewSpeed)
   ASSERT_NE(rig.server.route(), nullptr) << "adjust_speed does not cancel the route";
   EXPECT_EQ(rig.fc.commands.back().command, int8_t{a3lcm::fc_command_t::SET_SPEED});
   rig.run_for(30.0);
-  EXPECT_EQ(rig.server.counters().routes_completed, 1u);
+  EXPECT_EQ(rig.server.counters().get("routes_completed"), 1u);
   EXPECT_EQ(rig.fc.commands.back().command, int8_t{a3lcm::fc_command_t::GOTO});
   EXPECT_DOUBLE_EQ(rig.fc.commands.back().speed_limit_mps, 9.0);
   EXPECT_LT((rig.fc.position() - Eigen::Vector3d(60, 80, 40)).norm(), 1e-6);
@@ -285,7 +285,7 @@ TEST(ToolServerMotion, OrbitFliesAFullCircleAroundTheCentre) {
   const int n = r["waypoints"].get<int>();
   EXPECT_EQ(n, 9) << "2π·25 m in chords of at most 20 m: 8 chords, 9 points";
   rig.run_for(120.0);
-  EXPECT_EQ(rig.server.counters().routes_completed, 1u);
+  EXPECT_EQ(rig.server.counters().get("routes_completed"), 1u);
   int gotos = 0;
   for (const auto& c : rig.fc.commands) {
     if (c.command != a3lcm::fc_command_t::GOTO) continue;
@@ -309,7 +309,7 @@ TEST(ToolServerMotion, SurveyFliesTheLawnmowerAndCapturesAtEveryLineEnd) {
   EXPECT_EQ(r["waypoints"], 4);
   EXPECT_EQ(r["captures"], 4);
   rig.run_for(120.0);
-  EXPECT_EQ(rig.server.counters().routes_completed, 1u);
+  EXPECT_EQ(rig.server.counters().get("routes_completed"), 1u);
   ASSERT_EQ(rig.probe.payload.size(), 4u);
   ASSERT_EQ(rig.server.images().records().size(), 4u);
   const Eigen::Vector3d offset = test::FakeFcConfig{}.true_offset_W_m;
@@ -325,7 +325,7 @@ TEST(ToolServerMotion, SurveyFliesTheLawnmowerAndCapturesAtEveryLineEnd) {
     EXPECT_TRUE(std::abs(wp.y() - 62.5) < 1e-6 || std::abs(wp.y() - 87.5) < 1e-6) << wp.transpose();
     EXPECT_TRUE(std::abs(wp.x() - 50.0) < 1e-6 || std::abs(wp.x() - 150.0) < 1e-6) << wp.transpose();
   }
-  EXPECT_EQ(rig.server.counters().image_bytes_downlinked, 0u);
+  EXPECT_EQ(rig.server.counters().get("image_bytes_downlinked"), 0u);
 }
 
 TEST(ToolServerMotion, YawTurnsInPlace) {
@@ -412,7 +412,7 @@ TEST(ToolServerMotion, HeartbeatsAreForwardedToTheFcAtOnce) {
     rig.run_for(1.0);
   }
   EXPECT_EQ(rig.fc.heartbeats, 3);
-  EXPECT_EQ(rig.server.counters().heartbeats_forwarded, 3u);
+  EXPECT_EQ(rig.server.counters().get("heartbeats_forwarded"), 3u);
   EXPECT_TRUE(rig.fc.commands.empty());
   EXPECT_TRUE(rig.probe.down.empty()) << "heartbeats get no observation";
 }

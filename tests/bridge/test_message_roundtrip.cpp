@@ -117,6 +117,8 @@ FcStatus sample(FcStatus*) {
   return m;
 }
 
+SimClock sample(SimClock*) { return {(uint64_t{1} << 55) + 12345}; }  // 56 bits: beyond 2^32 us
+
 // NaN != NaN: compare the JSON forms (NaN is null there) instead of operator==.
 template <class Msg>
 void expect_same(const Msg& a, const Msg& b) {

@@ -96,7 +96,7 @@ TEST(RealTimeLoop, TakesOffHoldsAndLandsOnTheWallClock) {
   fc.stop();
   bridge.stop();
   for (auto& t : threads) EXPECT_EQ(t->failure(), "");
-  EXPECT_EQ(fc.counters().sensor_rejected, 0u);
+  EXPECT_EQ(fc.counters().get("sensor_rejected"), 0u);
   EXPECT_EQ(fc_can.stats().send_refused + bridge_can.stats().send_refused, 0u);
   const auto lateness = threads[3]->executor().lateness_samples_us();
   std::vector<double> sorted = lateness;

@@ -25,6 +25,7 @@
 #include "a3lcm/link_record_t.hpp"
 #include "a3lcm/network_state_t.hpp"
 #include "a3lcm/safety_event_t.hpp"
+#include "a3lcm/node_stats_t.hpp"
 #include "a3lcm/sim_clock_t.hpp"
 #include "a3lcm/slice_switch_reply_t.hpp"
 #include "a3lcm/slice_switch_request_t.hpp"
@@ -243,6 +244,37 @@ struct Case<a3lcm::safety_event_t> {
     expect_same_array(a.p_W_m, b.p_W_m, "p_W_m");
     EXPECT_SAME_DOUBLE(a.value, b.value);
     EXPECT_EQ(a.detail, b.detail);
+  }
+};
+
+template <>
+struct Case<a3lcm::node_stats_t> {
+  static a3lcm::node_stats_t make() {
+    a3lcm::node_stats_t m;
+    m.utime_us = kBigTime + 5;
+    m.wall_utime_us = kBigTime * 2 + 9;
+    m.node = "linkemu";
+    m.pid = 4242;
+    m.final = true;
+    m.counter_names = {"up.delivered", "records"};
+    m.counter_values = {kBigTime, 3};
+    m.n_counters = 2;
+    m.timing_names = {"lateness_p99_us"};
+    m.timing_values = {12.25};
+    m.n_timings = 1;
+    return m;
+  }
+  static void expect_equal(const a3lcm::node_stats_t& a, const a3lcm::node_stats_t& b) {
+    EXPECT_EQ(a.utime_us, b.utime_us);
+    EXPECT_EQ(a.wall_utime_us, b.wall_utime_us);
+    EXPECT_EQ(a.node, b.node);
+    EXPECT_EQ(a.pid, b.pid);
+    EXPECT_EQ(a.final, b.final);
+    EXPECT_EQ(a.counter_names, b.counter_names);
+    EXPECT_EQ(a.counter_values, b.counter_values);
+    EXPECT_EQ(a.timing_names, b.timing_names);
+    ASSERT_EQ(a.timing_values.size(), b.timing_values.size());
+    for (std::size_t i = 0; i < a.timing_values.size(); ++i) EXPECT_SAME_DOUBLE(a.timing_values[i], b.timing_values[i]);
   }
 };
 
@@ -494,7 +526,7 @@ struct Case<a3lcm::traffic_state_t> {
 using AllTypesTuple =
     std::tuple<a3lcm::actuator_cmd_t, a3lcm::edge_compute_reply_t, a3lcm::edge_compute_request_t,
                a3lcm::episode_event_t, a3lcm::fc_command_t, a3lcm::fc_status_t,
-               a3lcm::link_message_t, a3lcm::link_record_t, a3lcm::network_state_t,
+               a3lcm::link_message_t, a3lcm::link_record_t, a3lcm::network_state_t, a3lcm::node_stats_t,
                a3lcm::payload_event_t, a3lcm::safety_event_t, a3lcm::sim_clock_t,
                a3lcm::slice_switch_reply_t, a3lcm::slice_switch_request_t,
                a3lcm::traffic_state_t, a3lcm::vehicle_state_t>;

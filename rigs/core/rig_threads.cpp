@@ -1,0 +1,87 @@
+// Real-time threads of a rig.
+#include "rigs/core/rig_threads.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "a3lcm/actuator_cmd_t.hpp"
+#include "common/channels.hpp"
+
+namespace a3::rigs {
+
+const char* to_string(Sync sync) { return sync == Sync::kLockstep ? "lockstep" : "free"; }
+
+int64_t lockstep_quantum_us(const RigConfigs& configs) {
+  return std::llround(1e6 / configs.fc.params.control_rate_hz);
+}
+
+namespace {
+
+common::ThreadClock thread_clock(const common::Node* node, const RigNodes& n, const RigConfigs& cfg,
+                                 const RunOptions& o, const common::WallClock* wall, int64_t epoch_mono_ns) {
+  common::ThreadClock how;
+  if (o.sync == Sync::kFree) {
+    how = common::ThreadClock::free_running(*wall);
+  } else if (node == n.dynamics.get()) {
+    common::LockstepConfig pacing;
+    pacing.quantum_us = lockstep_quantum_us(cfg);
+    pacing.real_time_factor = o.real_time_factor;
+    pacing.start_mono_ns = epoch_mono_ns;
+    pacing.first_ack_us = pacing.quantum_us;
+    how = common::ThreadClock::master(pacing);
+  } else if (node == n.fc.get()) {
+    how = common::ThreadClock::external();
+  } else {
+    how = common::ThreadClock::follower();
+  }
+  // A deadline miss: a timer later than one control period of wall time.
+  how.deadline_miss_us = static_cast<double>(lockstep_quantum_us(cfg)) / o.real_time_factor;
+  return how;
+}
+
+}  // namespace
+
+RigThreads::RigThreads(RigNodes& n, const RigConfigs& cfg, const RunOptions& o, const std::string& lcm_url,
+                       int64_t epoch_mono_ns)
+    : nodes_(n.in_start_order()) {
+  if (o.sync == Sync::kFree) wall_ = std::make_unique<common::WallClock>(o.real_time_factor, epoch_mono_ns);
+  for (common::Node* node : nodes_) {
+    auto th = std::make_unique<common::RealTimeNodeThread>(*node, thread_clock(node, n, cfg, o, wall_.get(), epoch_mono_ns),
+                                                           lcm_url);
+    if (common::LockstepPacer* pacer = th->pacer()) {
+      th->bus().subscribe<a3lcm::actuator_cmd_t>(
+          common::channels::kActuators,
+          [pacer](const a3lcm::actuator_cmd_t& m, int64_t) { pacer->note_ack(m.utime_us); });
+    }
+    if (node == n.fc.get() && o.sync == Sync::kLockstep) n.fc->follow_sim_clock(th->stepped_clock());
+    threads_.push_back(std::move(th));
+  }
+}
+
+RigThreads::~RigThreads() { stop_all(); }
+
+void RigThreads::start() {
+  for (auto& th : threads_) th->start();
+}
+
+void RigThreads::stop_all_but_first() {
+  for (std::size_t i = threads_.size(); i-- > 1;) threads_[i]->stop_and_join();
+}
+
+void RigThreads::stop_all() {
+  for (std::size_t i = threads_.size(); i-- > 0;) threads_[i]->stop_and_join();
+}
+
+std::string RigThreads::failure() const {
+  for (std::size_t i = 0; i < threads_.size(); ++i) {
+    if (const std::string why = threads_[i]->failure(); !why.empty()) return nodes_[i]->name() + ": " + why;
+  }
+  return "";
+}
+
+const common::RealTimeClock& RigThreads::clock() const {
+  if (threads_.empty()) throw std::logic_error("RigThreads: no threads");
+  return threads_.front()->clock();
+}
+
+}  // namespace a3::rigs
