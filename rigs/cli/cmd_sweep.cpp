@@ -38,6 +38,7 @@ struct SweepArgs {
   std::string out = "out/sweep";
   double cell_timeout_s = -1.0;  // negative: 900 s in virtual time, none in real time
   bool rerun = false;
+  int realtime_retries = 2;
   bool dry_run = false;
   std::string plot_only;
   std::string llm_base_url;
@@ -125,6 +126,7 @@ int run(const SweepArgs& args) {
   options.shard = shard;
   options.jobs = args.jobs;
   options.rerun_complete = args.rerun;
+  options.realtime_retries = args.realtime_retries;
   sweep::SweepRunSummary summary;
   try {
     summary = sweep::run_sweep(grid, options, runner, [&](const sweep::ProgressCounts& c) { bar.update(c); }, stop);
@@ -143,6 +145,10 @@ int run(const SweepArgs& args) {
   if (c.ran + c.failed > 0) {
     std::printf("wall time: %.1f s for %zu episodes run with %d jobs: %.2f episodes/s\n", c.elapsed_s, c.ran + c.failed,
                 args.jobs, static_cast<double>(c.ran + c.failed) / std::max(c.elapsed_s, 1e-9));
+  }
+  if (summary.realtime_reruns > 0) {
+    std::printf("real time: %zu run(s) repeated because the host broke the real-time contract (status "
+                "realtime_violated; see README \"Real time\")\n", summary.realtime_reruns);
   }
   for (const auto& row : summary.rows) {
     if (!row.has_episode && row.status.rfind("not_run", 0) != 0) {
@@ -202,6 +208,10 @@ A3_REGISTER_COMMAND("15-sweep", [](CLI::App& app) {
                   "(default 900 in virtual time, none in real time)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--rerun", args->rerun, "run every cell again, complete or not");
+  cmd->add_option("--realtime-retries", args->realtime_retries,
+                  "real time: runs again a cell whose run broke the real-time contract (status realtime_violated: the "
+                  "host could not keep the pace) up to this many times, then lists it as failed (default 2)")
+      ->check(CLI::Range(0, 100));
   cmd->add_flag("--dry-run", args->dry_run, "list the cells of this shard (done or to run) and their commands");
   cmd->add_option("--plot-only", args->plot_only,
                   "DIR: run nothing; merge DIR's results.csv and results.shard-*.csv into DIR/results.csv and write "

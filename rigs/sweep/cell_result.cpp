@@ -34,8 +34,9 @@ CellCheck check_cell(const std::filesystem::path& dir, const SweepCell& cell) {
     check.why_not = "episode.json has no _rig.status (not written by a3rig run)";
     return check;
   }
-  if (status == "interrupted" || status.rfind("node_failed", 0) == 0) {
+  if (status == "interrupted" || status.rfind("node_failed", 0) == 0 || status.rfind("realtime_violated", 0) == 0) {
     check.why_not = "the run ended " + status;
+    check.realtime_violated = status.rfind("realtime_violated", 0) == 0;
     return check;
   }
   const bool seed_matches = rig.contains("seed") && rig["seed"].is_number_unsigned() &&

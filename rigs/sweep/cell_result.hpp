@@ -1,6 +1,7 @@
 // Whether a sweep cell is done, and its row of results.csv. A cell is complete when its
 // episode.json parses, belongs to the cell (agent, think time, seed) and ended the way an episode
-// ends (completed, time_limit, crashed); an interrupted run, a failed node, a half-written or
+// ends (completed, time_limit, crashed); an interrupted run, a failed node, a broken real-time
+// contract (realtime_violated: the host, not the agent, decided the outcome), a half-written or
 // missing file leaves the cell incomplete, and a resumed sweep runs it again.
 #pragma once
 
@@ -18,6 +19,7 @@ namespace a3::rigs::sweep {
 struct CellCheck {
   bool complete = false;
   std::string why_not;  // when incomplete
+  bool realtime_violated = false;  // the run broke the real-time contract: worth another try
   nlohmann::json episode;
 };
 

@@ -21,12 +21,14 @@ struct SweepRunOptions {
   Shard shard;
   int jobs = 1;
   bool rerun_complete = false;  // run every cell again, complete or not
+  int realtime_retries = 2;     // reruns of a cell whose run broke the real-time contract
 };
 
 struct SweepRunSummary {
   ProgressCounts counts;
   bool stopped = false;  // asked to stop: the cells not started have rows "not_run: ..."
   std::vector<ResultRow> rows;  // one per cell of the shard, in grid order
+  std::size_t realtime_reruns = 0;  // runs repeated because the real-time contract broke
   std::filesystem::path results_path;
 };
 

@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <fstream>
+#include <map>
 #include <mutex>
 #include <set>
 #include <thread>
@@ -31,6 +32,7 @@ struct TempDir {
 class FakeRunner final : public CellRunner {
  public:
   std::set<std::size_t> fail_cells;  // grid indices that write nothing and report a failure
+  std::map<std::size_t, int> violate_times;  // grid index -> how many runs break the real-time contract
   std::chrono::milliseconds run_time{0};
 
   CellRunOutcome run(const SweepCell& cell, const fs::path& dir, const std::atomic<bool>& stop) override {
@@ -46,10 +48,15 @@ class FakeRunner final : public CellRunner {
     }
     if (fail_cells.count(cell.index)) return {false, "a3rig run exited with status 2"};
     fs::create_directories(dir);
+    std::string status = stop.load() ? "interrupted" : "completed";
+    if (violate_times[cell.index] > 0) {
+      --violate_times[cell.index];
+      status = "realtime_violated: achieved real-time factor 1.2 below 0.5 x the requested 8";
+    }
     const nlohmann::json episode = {
         {"success", cell.seed % 2 == 1},
         {"_rig",
-         {{"status", stop.load() ? "interrupted" : "completed"}, {"agent", cell.agent}, {"think_time", cell.think_time},
+         {{"status", status}, {"agent", cell.agent}, {"think_time", cell.think_time},
           {"seed", cell.seed}, {"mission_time_s", 100.0}, {"wall_time_s", 1.0}}}};
     std::ofstream(dir / "episode.json") << episode.dump();
     return {true, ""};
@@ -239,6 +246,32 @@ TEST(SweepProgress, TheLineShowsCountsRateAndEta) {
   c.to_run = 10;
   c.elapsed_s = 10.0;
   EXPECT_NE(progress_line(c, 20).find("0.50 episodes/s  ETA 10s"), std::string::npos) << progress_line(c, 20);
+}
+
+TEST(SweepResume, ACellThatBrokeTheRealTimeContractIsRunAgainABoundedNumberOfTimes) {
+  TempDir dir;
+  const auto grid = small_grid();
+  FakeRunner runner;
+  runner.violate_times[3] = 1;   // fine on the second run
+  runner.violate_times[5] = 10;  // never fine
+  SweepRunOptions options;
+  options.out_dir = dir.path;
+  options.realtime_retries = 2;
+  std::atomic<bool> stop{false};
+  const SweepRunSummary s = run_sweep(grid, options, runner, {}, stop);
+  EXPECT_EQ(s.realtime_reruns, 1u + 2u);
+  EXPECT_TRUE(s.rows[3].has_episode);
+  EXPECT_EQ(s.rows[3].status, "completed");
+  EXPECT_FALSE(s.rows[5].has_episode);
+  EXPECT_EQ(s.rows[5].status.rfind("failed: the run ended realtime_violated", 0), 0u) << s.rows[5].status;
+  EXPECT_NE(s.rows[5].status.find("after 2 reruns"), std::string::npos) << s.rows[5].status;
+  EXPECT_EQ(s.counts.failed, 1u);
+  // A resumed sweep tries the violated cell again; the others are complete.
+  runner.ran();
+  runner.violate_times[5] = 0;
+  const SweepRunSummary again = run_sweep(grid, options, runner, {}, stop);
+  EXPECT_EQ(runner.ran(), std::vector<std::size_t>{5});
+  EXPECT_EQ(again.counts.failed, 0u);
 }
 
 }  // namespace
