@@ -10,10 +10,12 @@ function(a3_library name)
   set_target_properties(${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
 endfunction()
 
-# a3_gtest(NAME SOURCES ... DEPS ... [LABELS ...] [TIMEOUT s]): a GoogleTest program,
-# each test discovered by CTest. Tests find ../shared through A3_SHARED_DIR.
+# a3_gtest(NAME SOURCES ... DEPS ... [LABELS label] [TIMEOUT s] [SERIAL]): a GoogleTest program,
+# each test discovered by CTest. Tests find ../shared through A3_SHARED_DIR. SERIAL: tests that
+# judge wall-clock timing with bounds (not lockstep behaviour) run with nothing beside them
+# under `ctest -j`, so that the suite's deliberately loaded tests cannot starve them.
 function(a3_gtest name)
-  cmake_parse_arguments(A "" "TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
+  cmake_parse_arguments(A "SERIAL" "TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
   if(NOT A_TIMEOUT)
     set(A_TIMEOUT 300)
   endif()
@@ -24,8 +26,12 @@ function(a3_gtest name)
     A3_SOURCE_DIR="${CMAKE_SOURCE_DIR}" A3_BINARY_DIR="${CMAKE_BINARY_DIR}"
     A3_SHARED_DIR_DEFAULT="${A3_SHARED_DIR_DEFAULT}")
   target_link_libraries(${name} PRIVATE ${A_DEPS} GTest::gtest GTest::gtest_main Threads::Threads)
+  set(_a3_serial "")
+  if(A_SERIAL)
+    set(_a3_serial RUN_SERIAL TRUE)
+  endif()
   gtest_discover_tests(${name} DISCOVERY_MODE PRE_TEST DISCOVERY_TIMEOUT 60
-    PROPERTIES TIMEOUT ${A_TIMEOUT} LABELS "${A_LABELS}")
+    PROPERTIES TIMEOUT ${A_TIMEOUT} LABELS "${A_LABELS}" ${_a3_serial})
 endfunction()
 
 # a3_bench(NAME SOURCES ... DEPS ...): a Google Benchmark (or plain) benchmark program.

@@ -25,6 +25,14 @@ nlohmann::json timeout_observation(const nlohmann::json& action) {
   return {{"tool", action.value("name", "")}, {"result", {{"status", "timeout"}}}};
 }
 
+// The α³-Bench turn's n_t object.
+nlohmann::json net_vector(const std::string& slice, double lat_ms, double jitter_ms, double loss_pct,
+                          double throughput_mbps, double edge_load) {
+  return {{"slice", slice},         {"lat_ms", lat_ms},
+          {"jitter_ms", jitter_ms}, {"loss_pct", loss_pct},
+          {"throughput_mbps", throughput_mbps}, {"edge_load", edge_load}};
+}
+
 bool is_image_action(const nlohmann::json& action) {
   return action.value("type", "") == "mcp" && action.value("name", "") == "capture_image" &&
          !(action.contains("args") && action["args"].is_object() && action["args"].value("store_only", false));
@@ -106,12 +114,8 @@ void ConversationNode::start(common::Executor& executor, common::Bus& bus) {
 }
 
 nlohmann::json ConversationNode::net_json() const {
-  if (!have_net_) {
-    return {{"slice", "URLLC"}, {"lat_ms", 0.0}, {"jitter_ms", 0.0}, {"loss_pct", 0.0}, {"throughput_mbps", 0.0}, {"edge_load", 0.0}};
-  }
-  return {{"slice", net_.slice},       {"lat_ms", net_.lat_ms},
-          {"jitter_ms", net_.jitter_ms}, {"loss_pct", net_.loss_pct},
-          {"throughput_mbps", net_.throughput_mbps}, {"edge_load", net_.edge_load}};
+  if (!have_net_) return net_vector("URLLC", 0.0, 0.0, 0.0, 0.0, 0.0);
+  return net_vector(net_.slice, net_.lat_ms, net_.jitter_ms, net_.loss_pct, net_.throughput_mbps, net_.edge_load);
 }
 
 bool ConversationNode::settled() const {
@@ -290,9 +294,8 @@ void ConversationNode::on_link_record(const a3lcm::link_record_t& r) {
   if (!awaiting_record_ || r.sender != config_.sender || r.message_id != turn_message_id_) return;
   awaiting_record_ = false;
   executor_->cancel(record_timer_);
-  current_.net = {{"slice", r.slice},           {"lat_ms", r.net_lat_ms},
-                  {"jitter_ms", r.net_jitter_ms}, {"loss_pct", r.net_loss_pct},
-                  {"throughput_mbps", r.net_throughput_mbps}, {"edge_load", r.net_edge_load}};
+  current_.net = net_vector(r.slice, r.net_lat_ms, r.net_jitter_ms, r.net_loss_pct, r.net_throughput_mbps,
+                            r.net_edge_load);
   if (r.outcome == a3lcm::link_record_t::DELIVERED) current_.delivered_s = r.delivery_utime_us * 1e-6 - start_s_;
   maybe_complete_turn();
 }

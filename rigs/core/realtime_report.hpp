@@ -10,8 +10,12 @@
 //   stale_steps         dynamics steps without a fresh rotor command (never in lockstep)
 //   contract            {thresholds, violated, violations: [why]}
 // The contract (README "Real time"):
-//   lockstep: the whole-flight factor must reach kLockstepMinFraction of the requested one
-//     (below it an agent's wall-clock latency is charged at less than half its simulated worth);
+//   lockstep: simulated time is exact whatever the host does (no step passes without the
+//     flight controller's output), so a slow host matters only where wall-clock time enters the
+//     simulation: an agent whose own latency is measured on the wall clock (--agent llm) is
+//     charged at the achieved factor, which must then stay within kLockstepWallAgentTolerance of
+//     the requested one over the flight. Agents whose latency is charged in simulated time
+//     (scripted, replay, --think-time models) cannot be distorted by the host.
 //   free: the whole-flight factor must reach kFreeMinFraction of the requested one, and no node
 //     may miss more than kFreeMaxMissFraction of its deadlines (the physics itself was late).
 #pragma once
@@ -27,7 +31,7 @@
 
 namespace a3::rigs {
 
-inline constexpr double kLockstepMinFraction = 0.5;
+inline constexpr double kLockstepWallAgentTolerance = 0.1;
 inline constexpr double kFreeMinFraction = 0.9;
 inline constexpr double kFreeMaxMissFraction = 0.01;
 
@@ -39,6 +43,8 @@ struct RealTimeMeasure {
 
 nlohmann::json realtime_report(const RunOptions& options, const RealTimeMeasure& measure,
                                const std::map<std::string, NodeStatsRecord>& nodes);
+// Whether the run's agent measures its latency on the wall clock (an LLM over HTTP).
+bool agent_latency_on_wall_clock(const RunOptions& options);
 // The violations listed in a report ("" joined by "; " when none).
 std::string realtime_violations(const nlohmann::json& report);
 
