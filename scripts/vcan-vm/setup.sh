@@ -22,6 +22,12 @@ done
 
 mkdir -p "$DIR" "$DIR/debs"
 cd "$DIR"
+# One preparation at a time: two vcan tests started together on a new machine must not unpack
+# into the same folder at once (the second waits, then finds the cache ready).
+if command -v flock >/dev/null 2>&1; then
+  exec 9>"$DIR/.setup.lock"
+  flock 9
+fi
 SCRIPTS_HASH=$(cat "$HERE/build-initramfs.sh" "$HERE/guest-init.sh" | sha256sum | cut -c1-16)
 
 # Which kernel: the one cached, unless apt knows a newer linux-image-amd64 dependency.
