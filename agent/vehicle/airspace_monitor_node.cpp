@@ -57,11 +57,6 @@ void AirspaceMonitorNode::start(common::Executor&, common::Bus& bus) {
                                         [this](const a3lcm::traffic_state_t& t, int64_t) { on_traffic(t); });
 }
 
-SafetyCounts AirspaceMonitorNode::counts() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return counts_;
-}
-
 std::vector<a3lcm::safety_event_t> AirspaceMonitorNode::events() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return events_;

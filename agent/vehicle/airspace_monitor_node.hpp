@@ -15,7 +15,7 @@
 //   - crash: the dynamics report a crash; value = the speed at the time, m/s.
 // Each violation gives an event when it starts (detail "enter: ...") and one when it ends
 // (detail "leave: ...", value = the worst of the episode: deepest, closest, highest/lowest);
-// a violation ends only hysteresis_m back on the right side. counts() counts starts.
+// a violation ends only hysteresis_m back on the right side. counters() counts starts.
 #pragma once
 
 #include <cstdint>
@@ -48,14 +48,6 @@ struct AirspaceMonitorConfig {
   void validate() const;
 };
 
-struct SafetyCounts {
-  uint64_t nfz_intrusion = 0;
-  uint64_t separation_breach = 0;
-  uint64_t geofence_exit = 0;
-  uint64_t altitude_violation = 0;
-  uint64_t crash = 0;
-  uint64_t states = 0;  // vehicle states checked
-};
 
 class AirspaceMonitorNode final : public common::Node {
  public:
@@ -64,8 +56,10 @@ class AirspaceMonitorNode final : public common::Node {
   std::string name() const override { return "airspace_monitor"; }
   void start(common::Executor& executor, common::Bus& bus) override;
 
+  // nfz_intrusion, separation_breach, geofence_exit, altitude_violation, crash (violations
+  // started), states (vehicle states checked). Safe from any thread.
+  const common::CounterSet& counters() const override { return counter_set_; }
   // Safe from any thread.
-  SafetyCounts counts() const;
   std::vector<a3lcm::safety_event_t> events() const;
   // The closest each peer came (m), over the whole run.
   std::map<std::string, double> closest_approach_m() const;
@@ -100,7 +94,14 @@ class AirspaceMonitorNode final : public common::Node {
   bool have_takeoff_ = false;
 
   mutable std::mutex mutex_;
-  SafetyCounts counts_;
+  common::CounterSet counter_set_;
+  struct Counters {
+    explicit Counters(common::CounterSet& s)
+        : nfz_intrusion(s.add("nfz_intrusion")), separation_breach(s.add("separation_breach")),
+          geofence_exit(s.add("geofence_exit")), altitude_violation(s.add("altitude_violation")),
+          crash(s.add("crash")), states(s.add("states")) {}
+    common::Counter &nfz_intrusion, &separation_breach, &geofence_exit, &altitude_violation, &crash, &states;
+  } counts_{counter_set_};
   std::vector<a3lcm::safety_event_t> events_;
   std::map<std::string, double> closest_m_;
 };
