@@ -5,7 +5,6 @@
 
 #include "a3lcm/payload_event_t.hpp"
 #include "a3lcm/node_stats_t.hpp"
-#include "a3lcm/sim_clock_t.hpp"
 #include "common/channels.hpp"
 #include "common/node_stats.hpp"
 
@@ -39,11 +38,6 @@ void EpisodeRecorderNode::start(common::Executor&, common::Bus& bus) {
     NodeStatsRecord& n = rec_.nodes[m.node];
     if (n.final && !m.final) return;  // a late periodic report after the totals
     n = {common::node_stats_json(m), m.wall_utime_us, m.utime_us, m.pid, m.final != 0};
-  });
-  bus.subscribe<a3lcm::sim_clock_t>(ch::kClock, [this](const a3lcm::sim_clock_t& m, int64_t) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    rec_.last_grant_utime_us = std::max(rec_.last_grant_utime_us, m.utime_us);
-    rec_.last_grant_achieved_rtf = m.achieved_real_time_factor;
   });
   bus.subscribe<a3lcm::safety_event_t>(ch::kSafety, [this](const a3lcm::safety_event_t& e, int64_t) {
     std::lock_guard<std::mutex> lock(mutex_);

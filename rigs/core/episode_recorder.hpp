@@ -1,8 +1,7 @@
 // The episode recorder: listens to everything an episode is made of — completed turns and the
 // end of the dialogue (A3_EPISODE), measured safety events (A3_SAFETY), one record per link
 // message (A3_LINK_RECORD), the true trajectory (A3_STATE), the flight controller (A3_FC_STATUS)
-// payload events (A3_PAYLOAD), every node's statistics (A3_NODE_STATS) and the lockstep grants
-// (A3_CLOCK) — and keeps what the episode file needs: the turns, the
+// payload events (A3_PAYLOAD) and every node's statistics (A3_NODE_STATS) — and keeps what the episode file needs: the turns, the
 // events, link statistics, a 1 Hz trajectory and the last state. It also tracks the mission's
 // objectives (success is what really happened). Snapshots are safe from any thread.
 #pragma once
@@ -58,8 +57,6 @@ struct RecordedEpisode {
   bool objectives_all_done = false;
   uint64_t states = 0;
   std::map<std::string, NodeStatsRecord> nodes;  // by node name
-  int64_t last_grant_utime_us = -1;              // lockstep: the last A3_CLOCK grant heard
-  double last_grant_achieved_rtf = 0.0;
 };
 
 class EpisodeRecorderNode final : public common::Node {
