@@ -121,5 +121,45 @@ TEST(ToolCatalog, ACatalogThatIsNotOneIsRefused) {
   EXPECT_NE(small.check_args(*small.find_tool("ping"), json::object()).find("'n'"), std::string::npos);
 }
 
+// One registry: the OpenAI functions and the MCP tools are the catalog's entries, every A2A task
+// under "a2a_<task>", and report_turn; a call maps back to the α³ action it stands for.
+TEST(ToolCatalog, FunctionsListEveryToolTaskAndTheTurnCallOnce) {
+  const auto& catalog = ToolCatalog::builtin();
+  const json openai = catalog.openai_tools();
+  const json mcp = catalog.mcp_tools();
+  ASSERT_EQ(openai.size(), catalog.tools().size() + catalog.tasks().size() + 1);
+  ASSERT_EQ(mcp.size(), openai.size());
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < openai.size(); ++i) {
+    EXPECT_EQ(openai[i]["type"], "function");
+    const std::string name = openai[i]["function"]["name"];
+    EXPECT_EQ(mcp[i]["name"], name);
+    EXPECT_EQ(mcp[i]["inputSchema"]["type"], "object") << name;
+    EXPECT_TRUE(names.insert(name).second) << name;
+  }
+  for (const auto& t : catalog.tools()) EXPECT_TRUE(names.count(t.name)) << t.name;
+  for (const auto& t : catalog.tasks()) EXPECT_TRUE(names.count("a2a_" + t.task)) << t.task;
+  EXPECT_TRUE(names.count("report_turn"));
+}
+
+TEST(ToolCatalog, ACallBecomesTheActionItStandsFor) {
+  const auto& catalog = ToolCatalog::builtin();
+  const CallAsAction takeoff = catalog.action_from_call("takeoff", "{\"altitude_m\": 30}");
+  EXPECT_EQ(takeoff.problem, "");
+  EXPECT_EQ(takeoff.action, (json{{"type", "mcp"}, {"name", "takeoff"}, {"args", {{"altitude_m", 30}}}}));
+  EXPECT_EQ(ToolCatalog::function_name_of(takeoff.action), "takeoff");
+  const CallAsAction weather = catalog.action_from_call("a2a_request_weather_update", "");
+  EXPECT_EQ(weather.problem, "");
+  EXPECT_EQ(weather.action["to"], "weather_service");
+  EXPECT_EQ(ToolCatalog::function_name_of(weather.action), "a2a_request_weather_update");
+  const CallAsAction report = catalog.action_from_call("report_turn", json{{"intent", "survey"}, {"text", "ok"}});
+  EXPECT_TRUE(report.ends_turn);
+  EXPECT_EQ(report.problem, "");
+  EXPECT_NE(catalog.action_from_call("takeoff", "{\"altitude_m\": 0.1}").problem.find("args/altitude_m"), std::string::npos);
+  EXPECT_NE(catalog.action_from_call("fly", "{}").problem.find("unknown function 'fly'"), std::string::npos);
+  EXPECT_NE(catalog.action_from_call("hold", "{oops").problem.find("not JSON"), std::string::npos);
+  EXPECT_NE(catalog.action_from_call("report_turn", json{{"text", "x"}}).problem.find("intent"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace a3::agent
