@@ -96,7 +96,9 @@ RigConfigs make_rig_configs(const Scenario& s, const RunOptions& o) {
 
 std::unique_ptr<agent::Agent> make_agent(const RunOptions& o) {
   std::unique_ptr<agent::Agent> inner;
-  if (o.agent == "scripted") {
+  if (o.agent_factory) {
+    inner = o.agent_factory();
+  } else if (o.agent == "scripted") {
     inner = std::make_unique<agent::ScriptedAgent>();
   } else if (o.agent.rfind("replay:", 0) == 0) {
     std::filesystem::path p = o.agent.substr(7);

@@ -3,7 +3,13 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <string>
+
+namespace a3::agent {
+class Agent;
+}
 
 namespace a3::rigs {
 
@@ -15,7 +21,9 @@ const char* to_string(Sync sync);
 
 struct RunOptions {
   std::string scenario = "survey-field";  // built-in name, file, or alphabench:<path>
-  std::string agent = "scripted";          // scripted | replay:<episode file> | llm
+  std::string agent = "scripted";          // scripted | replay:<episode file> | llm | mcp
+  // When set, makes the agent instead of `agent` (`a3rig mcp`: the agent is the MCP session's).
+  std::function<std::unique_ptr<agent::Agent>()> agent_factory;
   // --agent llm: the OpenAI-compatible endpoint (rigs/core/llm_run.hpp). No API key here: it
   // comes only from the environment, so that it never shows in a command line or a record.
   std::string llm_base_url;                // empty: $A3_LLM_BASE_URL
