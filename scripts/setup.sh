@@ -41,6 +41,7 @@ packages=(
   python3 python3-jsonschema                     # the Python reference scorer (cross-check, baseline)
   python3-scipy python3-numpy                    # SciPy baseline of the dynamics benchmark (bench/dynamics)
   iproute2                                       # multicast loopback route for LCM's UDP transport
+  nodejs                                         # official OpenAI / MCP SDK clients in tests/npm (npm: below)
   # Real SocketCAN for the CAN tests on kernels without it (scripts/vcan-vm): QEMU boots
   # Debian's kernel (fetched with apt-get download, not installed) from a busybox
   # initramfs; can-utils gives candump/cansend; python3 unpacks the kernel image.
@@ -56,6 +57,10 @@ if [ "$install" = 1 ]; then
   export DEBIAN_FRONTEND=noninteractive
   apt-get update -qq
   apt-get install -y -qq --no-install-recommends "${packages[@]}" >/dev/null
+  # Some nodejs packages ship npm themselves, and Debian's npm conflicts with them.
+  if [ ! -e /usr/bin/npm ]; then
+    apt-get install -y -qq --no-install-recommends npm >/dev/null
+  fi
 fi
 
 generator=()
