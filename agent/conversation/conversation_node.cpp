@@ -109,6 +109,7 @@ void ConversationNode::start(common::Executor& executor, common::Bus& bus) {
     hb.payload_size_bytes = 64;
     bus_->publish(common::channels::kLinkUpTx, hb);
     ++counters_.heartbeats;
+    agent_->on_mission_time(now_s());
   });
   executor.schedule_after(static_cast<int64_t>(config_.start_delay_s * 1e6), [this] { start_turn(); });
 }
@@ -136,6 +137,9 @@ AgentContext ConversationNode::make_context() const {
   c.turn_number = current_.number;
   c.max_turns = config_.max_turns;
   c.mission_time_s = now_s();
+  c.step = step_;
+  c.turn_actions = current_.actions;
+  c.turn_obs = current_.obs;
   return c;
 }
 
@@ -147,14 +151,17 @@ void ConversationNode::start_turn() {
   current_.net = net_json();
   current_.started_s = now_s();
   in_turn_ = true;
+  step_ = 1;
+  turn_continues_ = false;
   if (current_.speaker == "agent") {
-    start_agent_turn();
+    ask_agent();
   } else {
     start_user_turn();
   }
 }
 
-void ConversationNode::start_agent_turn() {
+void ConversationNode::ask_agent() {
+  deciding_ = true;
   if (!config_.agent_runs_in_thread) {
     AgentDecision d;
     try {
@@ -191,16 +198,35 @@ void ConversationNode::poll_agent_thread() {
   decided(std::move(thread_decision_), now_s() - thread_started_s_);
 }
 
+void ConversationNode::record_step(const AgentDecision& d, double charged_s) {
+  current_.steps = step_;
+  current_.think_time_s += charged_s;
+  if (d.intent.empty()) {
+    current_.intent = !d.error.empty() ? "agent_error" : (turn_continues_ ? "" : "no_action");
+  } else {
+    current_.intent = d.intent;
+  }
+  current_.text = d.error.empty() ? d.text : "agent error: " + d.error;
+  if (step_ == 1) {
+    current_.usage = d.usage;
+    current_.attempts = d.attempts;
+  } else {
+    for (const auto& [key, value] : d.usage.items()) {
+      if (value.is_number()) current_.usage[key] = current_.usage.value(key, 0.0) + value.get<double>();
+    }
+    current_.attempts = std::max(current_.attempts, d.attempts);
+  }
+  if (d.attempt_log.is_array()) {
+    for (const auto& a : d.attempt_log) current_.attempt_log.push_back(a);
+  }
+}
+
 void ConversationNode::decided(AgentDecision d, double measured_s) {
   const bool in_thread = measured_s >= 0.0;
   const double wait_s = std::max(0.0, d.think_time_s + (in_thread ? 0.0 : d.latency_s));
-  current_.think_time_s = (in_thread ? measured_s : d.latency_s) + d.think_time_s;
-  current_.intent = d.intent.empty() ? (d.error.empty() ? "no_action" : "agent_error") : d.intent;
-  current_.text = d.error.empty() ? d.text : "agent error: " + d.error;
-  current_.usage = d.usage;
-  current_.attempts = d.attempts;
-  current_.attempt_log = d.attempt_log;
   nlohmann::json actions = d.actions.is_array() ? d.actions : nlohmann::json::array();
+  turn_continues_ = d.turn_continues && d.error.empty() && !actions.empty();
+  record_step(d, (in_thread ? measured_s : d.latency_s) + d.think_time_s);
   if (!d.error.empty()) common::log_warn("conversation", "turn " + std::to_string(current_.number) + ": " + d.error);
   executor_->schedule_after(static_cast<int64_t>(wait_s * 1e6), [this, actions] {
     current_.decided_s = now_s();
@@ -301,27 +327,43 @@ void ConversationNode::on_link_record(const a3lcm::link_record_t& r) {
 }
 
 void ConversationNode::maybe_complete_turn() {
-  if (!in_turn_ || awaiting_record_) return;
+  if (!in_turn_ || awaiting_record_ || deciding_) return;
   for (const auto& p : pending_) {
     if (!p.done) return;
+  }
+  if (turn_continues_) {
+    // The next step of the same turn, outside the callback that completed this one.
+    turn_continues_ = false;
+    ++step_;
+    deciding_ = true;
+    executor_->schedule_after(0, [this] { ask_agent(); });
+    return;
   }
   complete_turn();
 }
 
 void ConversationNode::dispatch(const nlohmann::json& actions) {
-  current_.actions = actions;
-  current_.obs = nlohmann::json::array();
-  pending_.assign(actions.size(), Pending{});
-  for (std::size_t i = 0; i < actions.size(); ++i) current_.obs.push_back(nullptr);
-  send_turn_message();
-  for (std::size_t i = 0; i < actions.size(); ++i) {
-    ActionEnvelope env{current_.number, static_cast<int>(i), actions[i]};
+  deciding_ = false;
+  if (step_ == 1) {
+    current_.actions = nlohmann::json::array();
+    current_.obs = nlohmann::json::array();
+    pending_.clear();
+    send_turn_message();
+  }
+  // A later step's actions follow the earlier ones in the turn, indexed on.
+  for (const auto& action : actions) {
+    const std::size_t i = current_.actions.size();
+    current_.actions.push_back(action);
+    current_.obs.push_back(nullptr);
+    pending_.push_back(Pending{});
+    ActionEnvelope env{current_.number, static_cast<int>(i), action};
     const auto msg = encode_action(env, next_message_id_++, executor_->clock().now_us(), config_.sender);
     bus_->publish(common::channels::kLinkUpTx, msg);
     ++counters_.actions_sent;
-    const double timeout_s = is_image_action(actions[i]) ? config_.image_timeout_s : config_.observation_timeout_s;
+    const double timeout_s = is_image_action(action) ? config_.image_timeout_s : config_.observation_timeout_s;
     pending_[i].timer = executor_->schedule_after(static_cast<int64_t>(timeout_s * 1e6), [this, i] { on_action_timeout(i); });
   }
+  maybe_complete_turn();  // a step without actions (after the first) ends the turn here
 }
 
 void ConversationNode::on_downlink(const a3lcm::link_message_t& m) {
@@ -359,6 +401,7 @@ void ConversationNode::publish_turn(const Turn& t) {
   detail["_rig"] = {{"started_s", t.started_s}, {"decided_s", t.decided_s}, {"finished_s", t.finished_s},
                     {"sent_s", t.sent_s}, {"delivered_s", t.delivered_s},
                     {"think_time_s", t.think_time_s}, {"usage", t.usage}, {"attempts", t.attempts}, {"text", t.text}};
+  if (t.speaker == "agent") detail["_rig"]["steps"] = t.steps;
   if (t.attempt_log.is_array() && !t.attempt_log.empty()) detail["_rig"]["attempt_log"] = t.attempt_log;
   a3lcm::episode_event_t ev;
   ev.utime_us = executor_->clock().now_us();
@@ -378,6 +421,7 @@ void ConversationNode::complete_turn() {
     turns_.push_back(current_);
   }
   publish_turn(current_);
+  agent_->on_dialogue(turns_, false, "");
   const int t = current_.number;
   const bool landed = has_flown_ && tracker_.state().on_ground && !tracker_.fc_status().armed;
   if (t >= config_.max_turns) {
@@ -394,6 +438,7 @@ void ConversationNode::complete_turn() {
 void ConversationNode::finish(const std::string& why) {
   // The ground station stays on the air (heartbeats) until the episode ends.
   finished_ = true;
+  agent_->on_dialogue(turns_, true, why);
   a3lcm::episode_event_t ev;
   ev.utime_us = executor_->clock().now_us();
   ev.turn = static_cast<int32_t>(turns_.size());

@@ -4,7 +4,10 @@
 // (A3_LINK_UP_TX) and then its actions; the turn's n_t is the link's state when that message
 // crossed (its A3_LINK_RECORD), and the turn ends when that record is in and every
 // observation has come down (A3_LINK_DOWN_RX) or timed out. The
-// agent's latency passes in the simulated world before its actions leave. Between turns the
+// agent's latency passes in the simulated world before its actions leave. An agent turn may
+// take several steps (AgentDecision::turn_continues): each step's actions go out after its
+// latency, and when their observations are in the agent decides again for the same turn; the
+// turn ends after a step that does not continue. Between turns the
 // world keeps flying: the supervisor speaks when the vehicle has settled, an objective is
 // done, the link degrades, traffic comes close, or after a maximum wait. Completed turns go
 // out on A3_EPISODE; command heartbeats go up the link every second.
@@ -76,9 +79,12 @@ class ConversationNode final : public common::Node {
     common::TimerId timer = 0;
   };
   void start_turn();
-  void start_agent_turn();
+  // Asks the agent for the next step of its turn (in place, or on a thread).
+  void ask_agent();
   void poll_agent_thread();
   void decided(AgentDecision decision, double extra_delay_s);
+  // The decision's effect on the turn: intent, text, latency, usage, attempts (all steps).
+  void record_step(const AgentDecision& d, double charged_s);
   void start_user_turn();
   void wait_for_user_trigger();
   void dispatch(const nlohmann::json& actions);
@@ -110,6 +116,9 @@ class ConversationNode final : public common::Node {
   Turn current_;
   std::vector<Pending> pending_;
   bool in_turn_ = false;
+  int step_ = 1;                // of the agent's turn
+  bool deciding_ = false;       // a step is being decided or waits out its latency
+  bool turn_continues_ = false; // the last step asked for another
   int64_t next_message_id_ = 1;
   int64_t turn_message_id_ = -1;
   bool awaiting_record_ = false;

@@ -51,6 +51,10 @@ class ThinkTimeAgent final : public Agent {
   ThinkTimeAgent(std::unique_ptr<Agent> inner, ThinkTime think_time, uint64_t seed);
   std::string name() const override { return inner_->name(); }
   AgentDecision decide(const AgentContext& context) override;
+  void on_mission_time(double mission_time_s) override { inner_->on_mission_time(mission_time_s); }
+  void on_dialogue(const std::vector<Turn>& dialogue, bool over, const std::string& why) override {
+    inner_->on_dialogue(dialogue, over, why);
+  }
 
  private:
   std::unique_ptr<Agent> inner_;

@@ -25,7 +25,8 @@ struct Turn {
   // lost or dropped). `net` is the link's n_t when it crossed.
   double sent_s = -1.0;
   double delivered_s = -1.0;
-  double think_time_s = 0.0;    // latency charged to the turn (measured or declared)
+  double think_time_s = 0.0;    // latency charged to the turn (measured or declared), all steps
+  int steps = 1;                // decisions the agent took for this turn (multi-step turns)
   nlohmann::json usage = nlohmann::json::object();  // tokens, for LLM agents
   int attempts = 1;
   nlohmann::json attempt_log = nlohmann::json::array();  // AgentDecision::attempt_log

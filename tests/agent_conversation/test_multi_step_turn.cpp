@@ -1,0 +1,184 @@
+// An agent turn of several steps (AgentDecision::turn_continues), as an MCP client takes it:
+// each step's actions go out after its latency, the agent decides again with the turn so far
+// once their observations are in, the turn's message crosses the link once (at the first
+// step), latencies add up, and intent and text are the last step's. Virtual time, fake link.
+#include <gtest/gtest.h>
+
+#include "a3lcm/link_record_t.hpp"
+#include "agent/conversation/conversation_node.hpp"
+#include "agent/link_protocol.hpp"
+#include "common/channels.hpp"
+#include "common/runtime.hpp"
+
+namespace a3::agent {
+namespace {
+
+namespace ch = common::channels;
+
+// Delivers every uplink message 20 ms later (its link record) and answers every action with
+// an "ok" observation naming the tool, 50 ms later. Counts the turn messages.
+class FakeLink final : public common::Node {
+ public:
+  std::string name() const override { return "fake_link"; }
+  void start(common::Executor& executor, common::Bus& bus) override {
+    executor_ = &executor;
+    bus_ = &bus;
+    bus.subscribe<a3lcm::link_message_t>(ch::kLinkUpTx, [this](const a3lcm::link_message_t& m, int64_t) { on_up(m); });
+  }
+  int turn_messages = 0;
+
+ private:
+  void on_up(const a3lcm::link_message_t& m) {
+    const int64_t now = executor_->clock().now_us();
+    a3lcm::link_record_t r{};
+    r.utime_us = now;
+    r.direction = "up";
+    r.message_id = m.message_id;
+    r.sender = m.sender;
+    r.kind = m.kind;
+    r.outcome = a3lcm::link_record_t::DELIVERED;
+    r.delivery_utime_us = now + 20'000;
+    r.slice = "URLLC";
+    bus_->publish(ch::kLinkRecord, r);
+    if (m.kind == "turn") ++turn_messages;
+    if (m.kind != "mcp_call") return;
+    std::string error;
+    const auto action = decode_action(m, &error);
+    ASSERT_TRUE(action) << error;
+    executor_->schedule_after(50'000, [this, a = *action] {
+      ObservationEnvelope o{a.turn, a.action_index, {{"tool", a.action.value("name", "")}, {"result", {{"status", "ok"}}}}};
+      bus_->publish(ch::kLinkDownRx, encode_observation(o, next_id_++, executor_->clock().now_us(), "tool_server"));
+    });
+  }
+
+  common::Executor* executor_ = nullptr;
+  common::Bus* bus_ = nullptr;
+  int64_t next_id_ = 1;
+};
+
+nlohmann::json mcp(const std::string& name) {
+  return {{"type", "mcp"}, {"name", name}, {"args", nlohmann::json::object()}};
+}
+
+// Step 1: read_telemetry (1 s); step 2: check_geofence (2 s); step 3: ends the turn (0.5 s).
+// Records what it saw of the turn so far at each step.
+class ThreeStepAgent final : public Agent {
+ public:
+  std::string name() const override { return "three_step"; }
+  AgentDecision decide(const AgentContext& c) override {
+    seen_steps.push_back(c.step);
+    seen_obs.push_back(c.turn_obs);
+    AgentDecision d;
+    if (c.step == 1) {
+      d.actions = nlohmann::json::array({mcp("read_telemetry")});
+      d.latency_s = 1.0;
+      d.turn_continues = true;
+    } else if (c.step == 2) {
+      d.actions = nlohmann::json::array({mcp("check_geofence")});
+      d.latency_s = 2.0;
+      d.turn_continues = true;
+    } else {
+      d.intent = "status_check";
+      d.text = "All checked.";
+      d.latency_s = 0.5;
+    }
+    return d;
+  }
+  void on_dialogue(const std::vector<Turn>& dialogue, bool over, const std::string& why) override {
+    dialogue_sizes.push_back(dialogue.size());
+    if (over) over_why = why;
+  }
+  std::vector<int> seen_steps;
+  std::vector<nlohmann::json> seen_obs;
+  std::vector<std::size_t> dialogue_sizes;
+  std::string over_why;
+};
+
+ConversationConfig two_turns() {
+  ConversationConfig config;
+  config.mission.name = "test";
+  config.min_turns = 2;
+  config.max_turns = 2;
+  config.user_min_wait_s = 1.0;
+  config.user_max_wait_s = 2.0;
+  return config;
+}
+
+TEST(MultiStepTurn, EachStepSeesTheObservationsOfTheStepsBefore) {
+  common::VirtualRuntime rt;
+  FakeLink link;
+  auto agent = std::make_unique<ThreeStepAgent>();
+  ThreeStepAgent& seen = *agent;
+  ConversationNode conversation(two_turns(), std::move(agent));
+  rt.add(link);
+  rt.add(conversation);
+  rt.run_until(30'000'000);
+  ASSERT_EQ(seen.seen_steps, (std::vector<int>{1, 2, 3}));
+  EXPECT_TRUE(seen.seen_obs[0].empty());
+  ASSERT_EQ(seen.seen_obs[1].size(), 1u);
+  EXPECT_EQ(seen.seen_obs[1][0]["tool"], "read_telemetry");
+  ASSERT_EQ(seen.seen_obs[2].size(), 2u);
+  EXPECT_EQ(seen.seen_obs[2][1]["tool"], "check_geofence");
+}
+
+TEST(MultiStepTurn, IsOneTurnWithEveryStepsActionsAndTheLastStepsWords) {
+  common::VirtualRuntime rt;
+  FakeLink link;
+  auto agent = std::make_unique<ThreeStepAgent>();
+  ThreeStepAgent& seen = *agent;
+  ConversationNode conversation(two_turns(), std::move(agent));
+  rt.add(link);
+  rt.add(conversation);
+  rt.run_until(30'000'000);
+  const std::vector<Turn> turns = conversation.turns();
+  ASSERT_EQ(turns.size(), 2u);
+  const Turn& t = turns[0];
+  ASSERT_EQ(t.actions.size(), 2u);
+  EXPECT_EQ(t.actions[0]["name"], "read_telemetry");
+  EXPECT_EQ(t.actions[1]["name"], "check_geofence");
+  ASSERT_EQ(t.obs.size(), 2u);
+  EXPECT_EQ(t.obs[1]["tool"], "check_geofence");
+  EXPECT_EQ(t.intent, "status_check");
+  EXPECT_EQ(t.text, "All checked.");
+  EXPECT_EQ(t.steps, 3);
+  EXPECT_NEAR(t.think_time_s, 3.5, 1e-9);
+  // The turn's message left once, after the first step's latency (turn begins at 2 s).
+  EXPECT_NEAR(t.sent_s, 3.0, 1e-6);
+  EXPECT_EQ(link.turn_messages, 2);  // the agent's turn and the supervisor's
+  // Steps: 1 s + 50 ms observation, 2 s + 50 ms, then 0.5 s: the turn ends at 5.6 s.
+  EXPECT_NEAR(t.finished_s, 2.0 + 1.05 + 2.05 + 0.5, 1e-3);
+  EXPECT_EQ(seen.over_why, "turn budget used");
+  EXPECT_EQ(seen.dialogue_sizes, (std::vector<std::size_t>{1, 2, 2}));
+}
+
+// Asks to continue but gives nothing to do: the turn ends rather than asking forever.
+class EmptyContinuingAgent final : public Agent {
+ public:
+  std::string name() const override { return "empty"; }
+  AgentDecision decide(const AgentContext&) override {
+    ++calls;
+    AgentDecision d;
+    d.intent = "idle";
+    d.turn_continues = true;
+    return d;
+  }
+  int calls = 0;
+};
+
+TEST(MultiStepTurn, AStepWithoutActionsCannotContinueTheTurn) {
+  common::VirtualRuntime rt;
+  FakeLink link;
+  auto agent = std::make_unique<EmptyContinuingAgent>();
+  EmptyContinuingAgent& seen = *agent;
+  ConversationNode conversation(two_turns(), std::move(agent));
+  rt.add(link);
+  rt.add(conversation);
+  rt.run_until(30'000'000);
+  EXPECT_EQ(seen.calls, 1);
+  ASSERT_EQ(conversation.turns().size(), 2u);
+  EXPECT_EQ(conversation.turns()[0].intent, "idle");
+  EXPECT_TRUE(conversation.finished());
+}
+
+}  // namespace
+}  // namespace a3::agent
