@@ -1,0 +1,63 @@
+// MCP's Streamable HTTP transport (revision 2025-06-18) on cpp-httplib: one endpoint (POST a
+// JSON-RPC message or batch; DELETE ends the session; GET answers 405, there is no
+// server-initiated stream). Responses are application/json, or a text/event-stream when a
+// tools/call asked for progress. One session per rig: Mcp-Session-Id is issued with the
+// initialize response and required afterwards (400 without, 404 unknown). The MCP-Protocol-Version
+// header must be a supported revision when present (400 otherwise); an Origin that is not local
+// is refused (403). Binds 127.0.0.1 unless told otherwise.
+#pragma once
+
+#include "agent/mcp/mcp_protocol.hpp"
+#include "agent/mcp/mcp_server.hpp"
+
+#include <atomic>
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+namespace httplib {
+class Server;
+struct Request;
+struct Response;
+}  // namespace httplib
+
+namespace a3::agent::mcp {
+
+class McpHttpTransport {
+ public:
+  McpHttpTransport(McpRig& rig, McpServerOptions options, McpLog log);
+  ~McpHttpTransport();  // stop()
+  McpHttpTransport(const McpHttpTransport&) = delete;
+  McpHttpTransport& operator=(const McpHttpTransport&) = delete;
+
+  int start();   // the bound port; throws std::runtime_error when it cannot bind
+  void wait();   // until DELETE of the session or stop()
+  void stop();   // idempotent
+
+ private:
+  void on_post(const httplib::Request& request, httplib::Response& response);
+  void on_delete(const httplib::Request& request, httplib::Response& response);
+  void on_get(const httplib::Request& request, httplib::Response& response);
+  // Header checks shared by every method; false (and `response` filled) when refused.
+  bool admit(const httplib::Request& request, httplib::Response& response, bool initializing);
+  std::shared_ptr<McpProtocol> open_session(const nlohmann::json& message, httplib::Response& response);
+  void answer(const std::shared_ptr<McpProtocol>& protocol, const nlohmann::json& message,
+              bool stream, httplib::Response& response);
+  void end_session();
+
+  McpRig& rig_;
+  McpServerOptions options_;
+  McpLog log_;
+  std::unique_ptr<httplib::Server> server_;
+  std::thread listen_thread_;
+  std::mutex mutex_;
+  std::condition_variable done_cv_;
+  bool session_over_ = false;
+  std::atomic<bool> stopping_{false};
+  std::string session_id_;
+  std::shared_ptr<McpProtocol> protocol_;
+};
+
+}  // namespace a3::agent::mcp
