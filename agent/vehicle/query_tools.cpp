@@ -5,7 +5,7 @@
 #include <set>
 
 #include "agent/vehicle/observation_json.hpp"
-#include "agent/vehicle/tool_server_node.hpp"
+#include "agent/vehicle/vehicle_tools.hpp"
 
 namespace a3::agent {
 namespace {
@@ -24,75 +24,67 @@ std::string field_list() {
   return out;
 }
 
-}  // namespace
+nlohmann::json link_json(const a3lcm::network_state_t* net) {
+  if (net == nullptr) return nullptr;
+  nlohmann::json link = {{"slice", net->slice},
+                         {"lat_ms", rounded(net->lat_ms, 2)},
+                         {"jitter_ms", rounded(net->jitter_ms, 2)},
+                         {"loss_pct", rounded(net->loss_pct, 3)},
+                         {"throughput_mbps", rounded(net->throughput_mbps, 2)},
+                         {"edge_load", rounded(net->edge_load, 3)},
+                         {"degraded", net->degraded != 0}};
+  if (!net->pending_slice.empty()) link["pending_slice"] = net->pending_slice;
+  return link;
+}
 
-void ToolServerNode::tool_read_telemetry(const nlohmann::json& args) {
+nlohmann::json route_json(const OnboardRoute* route) {
+  if (route == nullptr) return nullptr;
+  return {{"name", route->name()},
+          {"waypoint", route->index() + 1},
+          {"of", route->points().size()},
+          {"target", point_json(route->current().p_W_m)}};
+}
+
+void read_telemetry(VehicleServices& vehicle, const nlohmann::json& args) {
   std::set<std::string> wanted;
   if (args.contains("fields")) {
     const auto& fields = args["fields"];
     for (std::size_t i = 0; i < fields.size(); ++i) {
       const std::string f = fields[i].get<std::string>();
       if (std::find(kTelemetryFields.begin(), kTelemetryFields.end(), f) == kTelemetryFields.end()) {
-        return finish_error("args/fields/" + std::to_string(i) + ": unknown field '" + f + "'; the fields are: " +
-                            field_list());
+        return vehicle.finish_error("args/fields/" + std::to_string(i) + ": unknown field '" + f +
+                                    "'; the fields are: " + field_list());
       }
       wanted.insert(f);
     }
   }
-  if (!fc_status_) {
-    return finish_mcp({{"status", "error"}, {"error", "no telemetry from the flight controller yet"}});
+  const a3lcm::fc_status_t* status = vehicle.fc_status();
+  if (status == nullptr) {
+    return vehicle.finish_mcp({{"status", "error"}, {"error", "no telemetry from the flight controller yet"}});
   }
-  const auto& s = *fc_status_;
+  const auto& s = *status;
   const Eigen::Vector3d v(s.v_W_mps[0], s.v_W_mps[1], s.v_W_mps[2]);
-  nlohmann::json link = nullptr;
-  if (net_) {
-    link = {{"slice", net_->slice},
-            {"lat_ms", rounded(net_->lat_ms, 2)},
-            {"jitter_ms", rounded(net_->jitter_ms, 2)},
-            {"loss_pct", rounded(net_->loss_pct, 3)},
-            {"throughput_mbps", rounded(net_->throughput_mbps, 2)},
-            {"edge_load", rounded(net_->edge_load, 3)},
-            {"degraded", net_->degraded != 0}};
-    if (!net_->pending_slice.empty()) link["pending_slice"] = net_->pending_slice;
-  }
-  nlohmann::json route = nullptr;
-  if (route_) {
-    route = {{"name", route_->name()},
-             {"waypoint", route_->index() + 1},
-             {"of", route_->points().size()},
-             {"target", point_json(route_->current().p_W_m)}};
-  }
-  nlohmann::json result = {{"time_s", rounded(executor_->clock().now_s(), 2)},
-                           {"pose", pose_json(*position(), s.yaw_deg)},
+  nlohmann::json result = {{"time_s", rounded(vehicle.now_s(), 2)},
+                           {"pose", pose_json(*vehicle.position(), s.yaw_deg)},
                            {"velocity", {{"vx", rounded(v.x())}, {"vy", rounded(v.y())}, {"vz", rounded(v.z())}}},
                            {"speed_mps", rounded(v.norm())},
                            {"battery_pct", rounded(s.battery_pct, 1)},
                            {"mode", fc_mode_name(s.mode)},
                            {"armed", s.armed != 0},
                            {"failsafe", fc_failsafe_name(s.failsafe)},
-                           {"link", link},
-                           {"route", route}};
+                           {"link", link_json(vehicle.network_state())},
+                           {"route", route_json(vehicle.onboard_route())}};
   if (!wanted.empty()) {
     nlohmann::json picked = nlohmann::json::object();
     for (const auto& f : wanted) picked[f] = result[f];
     result = std::move(picked);
   }
-  finish_mcp(result);
+  vehicle.finish_mcp(result);
 }
 
-void ToolServerNode::tool_check_geofence(const nlohmann::json& args) {
-  const auto here = position();
-  const bool all_given = args.contains("x") && args.contains("y") && args.contains("z");
-  if (!here && !all_given) {
-    return finish_error("args: give x, y and z: the vehicle's position is not known yet");
-  }
-  const auto coord = [&](const char* key, int k) { return args.contains(key) ? args[key].get<double>() : (*here)[k]; };
-  const Eigen::Vector3d p(coord("x", 0), coord("y", 1), coord("z", 2));
-  const Airspace& air = config_.airspace;
+// The no-fly zone nearest to p (horizontally), or null when there is none.
+nlohmann::json nearest_zone_json(const Airspace& air, const Eigen::Vector3d& p) {
   const Eigen::Vector2d xy = p.head<2>();
-  const bool inside = air.inside_geofence(xy);
-  const bool altitude_ok = air.altitude_ok(p.z());
-  const NoFlyZone* in_zone = air.zone_containing(p);
   nlohmann::json nearest = nullptr;
   double nearest_d = std::numeric_limits<double>::infinity();
   for (const auto& z : air.no_fly_zones) {
@@ -103,7 +95,23 @@ void ToolServerNode::tool_check_geofence(const nlohmann::json& args) {
       nearest = {{"id", z.id}, {"distance_m", rounded(d, 1)}, {"vertical", vertical}};
     }
   }
-  const std::string gate_reason = gate_.check_target(p, "point");
+  return nearest;
+}
+
+void check_geofence(VehicleServices& vehicle, const nlohmann::json& args) {
+  const auto here = vehicle.position();
+  const bool all_given = args.contains("x") && args.contains("y") && args.contains("z");
+  if (!here && !all_given) {
+    return vehicle.finish_error("args: give x, y and z: the vehicle's position is not known yet");
+  }
+  const auto coord = [&](const char* key, int k) { return args.contains(key) ? args[key].get<double>() : (*here)[k]; };
+  const Eigen::Vector3d p(coord("x", 0), coord("y", 1), coord("z", 2));
+  const Airspace& air = vehicle.config().airspace;
+  const Eigen::Vector2d xy = p.head<2>();
+  const bool inside = air.inside_geofence(xy);
+  const bool altitude_ok = air.altitude_ok(p.z());
+  const NoFlyZone* in_zone = air.zone_containing(p);
+  const std::string gate_reason = vehicle.gate().check_target(p, "point");
   const char* status = in_zone != nullptr ? "in_no_fly_zone"
                        : !inside          ? "outside_geofence"
                        : !altitude_ok     ? "outside_altitude_envelope"
@@ -116,10 +124,17 @@ void ToolServerNode::tool_check_geofence(const nlohmann::json& args) {
                            {"alt_bounds", {finite_or_null(air.min_altitude_m, 1), finite_or_null(air.max_altitude_m, 1)}},
                            {"nfz_violation", in_zone != nullptr},
                            {"in_zone", in_zone != nullptr ? nlohmann::json(in_zone->id) : nlohmann::json(nullptr)},
-                           {"nearest_nfz", nearest},
+                           {"nearest_nfz", nearest_zone_json(air, p)},
                            {"flyable", gate_reason.empty()}};
   if (!gate_reason.empty()) result["why_not_flyable"] = gate_reason;
-  finish_mcp(result);
+  vehicle.finish_mcp(result);
+}
+
+}  // namespace
+
+void add_query_tools(ToolHandlers& handlers) {
+  handlers.add_tool("read_telemetry", read_telemetry);
+  handlers.add_tool("check_geofence", check_geofence);
 }
 
 }  // namespace a3::agent

@@ -1,13 +1,13 @@
-// The tool server's inputs, action queue, fc command/status handshake, route sequencing and
-// A2A dispatch. The tools themselves are in motion_tools.cpp, query_tools.cpp and
-// payload_tools.cpp.
+// The tool server's inputs, action queue, the dispatch of each action by name to its handler
+// (tool_handlers.hpp) and the answers. What the handlers may do to the vehicle is in
+// tool_server_services.cpp; the tools themselves in motion_tools.cpp, route_tools.cpp,
+// query_tools.cpp, payload_tools.cpp and peer_tasks.cpp.
 #include "agent/vehicle/tool_server_node.hpp"
 
 #include <cmath>
 #include <limits>
 
 #include "a3lcm/safety_event_t.hpp"
-#include "a3lcm/slice_switch_request_t.hpp"
 #include "agent/vehicle/observation_json.hpp"
 #include "common/channels.hpp"
 #include "common/log.hpp"
@@ -31,28 +31,28 @@ std::string task_list(const ToolCatalog& catalog) {
   return out;
 }
 
-}  // namespace
-
-namespace {
 const ToolServerConfig& validated(const ToolServerConfig& c) {
   c.validate();
   return c;
 }
+
 }  // namespace
 
-ToolServerNode::ToolServerNode(ToolServerConfig config, const ToolCatalog& catalog)
+ToolServerNode::ToolServerNode(ToolServerConfig config, const ToolCatalog& catalog, const ToolHandlers& handlers)
     : config_(validated(config)),
       catalog_(catalog),
+      handlers_(handlers),
       gate_(config_.airspace, config_.gate, config_.energy, config_.home_W_m),
       sensors_(config_.sensors, config_.payloads, config_.images),
       swarm_(config_.airspace.traffic, config_.swarm),
       weather_(config_.env, config_.weather),
       ground_station_(gate_, config_.planner),
       speed_mps_(config_.energy.cruise_speed_mps),
-      counters_(std::make_unique<AtomicCounters>(counter_set_)) {}
+      counters_(std::make_unique<AtomicCounters>(counter_set_)) {
+  handlers_.check_against(catalog_);
+}
 
 ToolServerNode::~ToolServerNode() = default;
-
 
 void ToolServerNode::start(common::Executor& executor, common::Bus& bus) {
   executor_ = &executor;
@@ -199,21 +199,12 @@ void ToolServerNode::handle_mcp(const nlohmann::json& action) {
     finish_error(problem);
     return;
   }
-  if (name == "read_telemetry") return tool_read_telemetry(args);
-  if (name == "takeoff") return tool_takeoff(args);
-  if (name == "set_waypoint") return tool_set_waypoint(args);
-  if (name == "navigate_to") return tool_navigate_to(args);
-  if (name == "set_altitude") return tool_set_altitude(args);
-  if (name == "adjust_speed") return tool_adjust_speed(args);
-  if (name == "execute_maneuver") return tool_execute_maneuver(args);
-  if (name == "hold") return tool_hold();
-  if (name == "return_to_home") return tool_return_to_home();
-  if (name == "land") return tool_land();
-  if (name == "check_geofence") return tool_check_geofence(args);
-  if (name == "activate_sensor") return tool_activate_sensor(args);
-  if (name == "capture_image") return tool_capture_image(args);
-  if (name == "switch_network_slice") return tool_switch_network_slice(args);
-  finish_error("tool '" + name + "' is in the catalog but the vehicle does not implement it");
+  const ToolHandler* handler = handlers_.find_tool(name);
+  if (handler == nullptr) {  // check_against at construction rules this out
+    finish_error("tool '" + name + "' is in the catalog but the vehicle does not implement it");
+    return;
+  }
+  (*handler)(*this, args);
 }
 
 void ToolServerNode::handle_a2a(const nlohmann::json& action) {
@@ -236,23 +227,9 @@ void ToolServerNode::handle_a2a(const nlohmann::json& action) {
                                      ? action["payload"]
                                      : nlohmann::json::object();
   if (auto problem = catalog_.check_payload(*spec, payload); !problem.empty()) return fail(problem);
-  PeerAnswer answer;
-  if (task == "collision_avoidance") {
-    answer = swarm_.collision_avoidance(self_view(), payload);
-  } else if (task == "swarm_status_check") {
-    answer = swarm_.swarm_status_check(self_view());
-  } else if (task == "swarm_formation") {
-    answer = swarm_.swarm_formation(self_view(), payload);
-  } else if (task == "request_weather_update") {
-    answer = weather_.weather_update(self_view());
-  } else if (task == "path_plan") {
-    answer = ground_station_.path_plan(position(), payload);
-  } else if (task == "handover_data") {
-    answer = ground_station_.handover_data(images_, payload);
-    counters_->image_bytes_downlinked += static_cast<uint64_t>(answer.extra_bytes);
-  } else {
-    return fail("task '" + task + "' is in the catalog but no peer implements it");
-  }
+  const TaskHandler* handler = handlers_.find_task(task);
+  if (handler == nullptr) return fail("task '" + task + "' is in the catalog but no peer implements it");
+  const PeerAnswer answer = (*handler)(*this, payload);
   if (answer.status == "error") ++counters_->errors;
   finish(a2a_observation(task, spec->to, answer), answer.extra_bytes);
 }
@@ -299,120 +276,6 @@ void ToolServerNode::finish_gate_refusal(const std::string& reason) {
   bus_->publish(common::channels::kSafety, e);
   nlohmann::json result = refused_result(reason, "safety_gate");
   result["pose"] = pose_now();
-  finish_mcp(result);
-}
-
-// ---------------------------------------------------------------------------------------------
-// The fc
-
-int32_t ToolServerNode::send_fc(int8_t command, const Eigen::Vector3d& target, double speed_mps, double yaw_deg) {
-  a3lcm::fc_command_t c{};
-  c.utime_us = executor_->clock().now_us();
-  c.seq = ++seq_;
-  c.command = command;
-  for (int k = 0; k < 3; ++k) c.target_W_m[k] = target[k];
-  c.speed_limit_mps = speed_mps;
-  c.yaw_deg = yaw_deg;
-  bus_->publish(common::channels::kFcCommand, c);
-  ++counters_->fc_commands;
-  return c.seq;
-}
-
-void ToolServerNode::await_status(int32_t seq, StatusContinuation then) {
-  awaited_seq_ = seq;
-  status_then_ = std::move(then);
-  status_timer_ = executor_->schedule_after(seconds_to_us(config_.fc_status_timeout_s), [this] {
-    if (!status_then_) return;
-    ++counters_->timeouts;
-    auto then = std::move(status_then_);
-    status_then_ = nullptr;
-    then(nullptr);
-  });
-}
-
-void ToolServerNode::await_slice_reply(int64_t request_id, SliceContinuation then) {
-  awaited_slice_request_ = request_id;
-  slice_then_ = std::move(then);
-  slice_timer_ = executor_->schedule_after(seconds_to_us(config_.slice_reply_timeout_s), [this] {
-    if (!slice_then_) return;
-    ++counters_->timeouts;
-    auto then = std::move(slice_then_);
-    slice_then_ = nullptr;
-    then(nullptr);
-  });
-}
-
-void ToolServerNode::cancel_route(const std::string& why) {
-  if (!route_) return;
-  ++counters_->routes_aborted;
-  common::log_info(kLog, "route " + route_->name() + " cancelled at waypoint " + std::to_string(route_->index() + 1) +
-                             " of " + std::to_string(route_->points().size()) + ": " + why);
-  route_.reset();
-}
-
-void ToolServerNode::advance_route(const a3lcm::fc_status_t& s) {
-  const auto update = route_->on_status(s, config_.route.arrive_tolerance_m);
-  if (update.event == OnboardRoute::Event::kNone) return;
-  if (update.event == OnboardRoute::Event::kAborted) {
-    cancel_route(update.reason);
-    return;
-  }
-  const RoutePoint& reached = route_->current();
-  if (reached.capture) {
-    const SensorInfo* sensor = sensors_.find(route_->capture_sensor());
-    if (sensor != nullptr && sensor->usable && sensors_.active(sensor->name)) {
-      capture(*sensor, false);
-    } else {
-      common::log_warn(kLog, "route " + route_->name() + ": no capture at waypoint " +
-                                 std::to_string(route_->index() + 1) + ", sensor " + route_->capture_sensor() +
-                                 " is not active");
-    }
-  }
-  if (route_->advance()) {
-    const RoutePoint& next = route_->current();
-    route_->leg_sent(send_fc(a3lcm::fc_command_t::GOTO, next.p_W_m, route_->speed_mps(), next.yaw_deg));
-    return;
-  }
-  ++counters_->routes_completed;
-  common::log_info(kLog, "route " + route_->name() + " completed (" + std::to_string(route_->points().size()) +
-                             " waypoints)");
-  const bool land = route_->end() == RouteEnd::kLand;
-  route_.reset();
-  if (land) {
-    const Eigen::Vector3d p = position().value_or(Eigen::Vector3d::Zero());
-    send_fc(a3lcm::fc_command_t::LAND, p, 0.0, std::numeric_limits<double>::quiet_NaN());
-  }
-}
-
-std::optional<Eigen::Vector3d> ToolServerNode::position() const {
-  if (!fc_status_) return std::nullopt;
-  return Eigen::Vector3d(fc_status_->p_W_m[0], fc_status_->p_W_m[1], fc_status_->p_W_m[2]);
-}
-
-nlohmann::json ToolServerNode::pose_now() const {
-  if (!fc_status_) return nullptr;
-  return pose_json(*position(), fc_status_->yaw_deg);
-}
-
-void ToolServerNode::answer_motion(const a3lcm::fc_status_t* s, nlohmann::json extra) {
-  if (s == nullptr) {
-    char text[128];
-    std::snprintf(text, sizeof text, "no status from the flight controller within %.1f s", config_.fc_status_timeout_s);
-    finish_mcp({{"status", "timeout"}, {"reason", text}, {"pose", pose_now()}});
-    return;
-  }
-  const Eigen::Vector3d p(s->p_W_m[0], s->p_W_m[1], s->p_W_m[2]);
-  nlohmann::json result;
-  if (s->last_command_accepted) {
-    result = {{"status", "accepted"}};
-  } else {
-    result = refused_result(s->last_command_reason, "flight_controller");
-  }
-  result["mode"] = fc_mode_name(s->mode);
-  result["pose"] = pose_json(p, s->yaw_deg);
-  if (s->last_command_accepted) {
-    for (auto& [key, value] : extra.items()) result[key] = value;
-  }
   finish_mcp(result);
 }
 

@@ -15,8 +15,11 @@
 // Actions are executed one at a time: one that waits (for the fc's status of its command, a
 // slice-switch reply) holds the next ones back, so observations keep the actions' order.
 // Every argument is checked against the tool catalog's schema, then by the tool's own range
-// rules, then (motion) by the safety gate; only then does anything reach the fc. The tools'
-// semantics and observation shapes are in agent/README.md ("Vehicle side").
+// rules, then (motion) by the safety gate; only then does anything reach the fc. Each tool and
+// task is a handler registered by its catalog name (tool_handlers.hpp, vehicle_tools.hpp) that
+// reaches the vehicle through VehicleServices; the node keeps the queue, the LCM inputs and
+// outputs and the waits. The tools' semantics and observation shapes are in agent/README.md
+// ("Vehicle side").
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -44,17 +47,21 @@
 #include "agent/vehicle/sensor_suite.hpp"
 #include "agent/vehicle/swarm_peer.hpp"
 #include "agent/vehicle/tool_server_config.hpp"
+#include "agent/vehicle/vehicle_services.hpp"
+#include "agent/vehicle/vehicle_tools.hpp"
 #include "agent/vehicle/weather_service.hpp"
 #include "common/node.hpp"
 
 namespace a3::agent {
 
 
-class ToolServerNode final : public common::Node {
+class ToolServerNode final : public common::Node, private VehicleServices {
  public:
   // Throws std::invalid_argument naming the bad field of the config (or of env, sensors,
-  // payloads, traffic). The catalog must outlive the node.
-  explicit ToolServerNode(ToolServerConfig config, const ToolCatalog& catalog = ToolCatalog::builtin());
+  // payloads, traffic), or a catalog tool/task without a handler or a handler without a
+  // catalog entry (ToolHandlers::check_against). The catalog must outlive the node.
+  explicit ToolServerNode(ToolServerConfig config, const ToolCatalog& catalog = ToolCatalog::builtin(),
+                          const ToolHandlers& handlers = vehicle_tools());
   ~ToolServerNode() override;
 
   std::string name() const override { return "tool_server"; }
@@ -71,10 +78,10 @@ class ToolServerNode final : public common::Node {
   // The executor's thread only (or after it stopped).
   const ImageStore& images() const { return images_; }
   const SwarmPeer& swarm() const { return swarm_; }
-  const SafetyGate& gate() const { return gate_; }
+  const SafetyGate& gate() const override { return gate_; }
   const SensorSuite& sensors() const { return sensors_; }
   const OnboardRoute* route() const { return route_ ? &*route_ : nullptr; }
-  const ToolServerConfig& config() const { return config_; }
+  const ToolServerConfig& config() const override { return config_; }
 
  private:
   struct AtomicCounters {
@@ -82,8 +89,6 @@ class ToolServerNode final : public common::Node {
         : link_messages(s.add("link_messages")), malformed_dropped(s.add("malformed_dropped")), queue_overflow_dropped(s.add("queue_overflow_dropped")), heartbeats_forwarded(s.add("heartbeats_forwarded")), mcp_calls(s.add("mcp_calls")), a2a_messages(s.add("a2a_messages")), errors(s.add("errors")), gate_refusals(s.add("gate_refusals")), fc_commands(s.add("fc_commands")), fc_refusals(s.add("fc_refusals")), timeouts(s.add("timeouts")), routes_started(s.add("routes_started")), routes_completed(s.add("routes_completed")), routes_aborted(s.add("routes_aborted")), images_captured(s.add("images_captured")), image_bytes_downlinked(s.add("image_bytes_downlinked")), observations_sent(s.add("observations_sent")), turn_messages(s.add("turn_messages")) {}
     common::Counter &link_messages, &malformed_dropped, &queue_overflow_dropped, &heartbeats_forwarded, &mcp_calls, &a2a_messages, &errors, &gate_refusals, &fc_commands, &fc_refusals, &timeouts, &routes_started, &routes_completed, &routes_aborted, &images_captured, &image_bytes_downlinked, &observations_sent, &turn_messages;
   };
-  using StatusContinuation = std::function<void(const a3lcm::fc_status_t* status)>;  // nullptr: timed out
-  using SliceContinuation = std::function<void(const a3lcm::slice_switch_reply_t* reply)>;
 
   // Inputs.
   void on_link_message(const a3lcm::link_message_t& m);
@@ -91,54 +96,47 @@ class ToolServerNode final : public common::Node {
   void on_slice_reply(const a3lcm::slice_switch_reply_t& r);
   void publish_traffic();
 
-  // The action queue.
+  // The action queue and the dispatch by name to the handlers (tool_server_node.cpp).
   void process_queue();
   void handle(const ActionEnvelope& action);
   void handle_mcp(const nlohmann::json& action);
   void handle_a2a(const nlohmann::json& action);
   void finish(nlohmann::json obs, int64_t extra_bytes = 0);
-  void finish_mcp(const nlohmann::json& result, int64_t extra_bytes = 0);
-  void finish_error(const std::string& message);
-  void finish_gate_refusal(const std::string& reason);
-
-  // The fc.
-  int32_t send_fc(int8_t command, const Eigen::Vector3d& target_W_m, double speed_mps, double yaw_deg);
-  void await_status(int32_t seq, StatusContinuation then);
-  void await_slice_reply(int64_t request_id, SliceContinuation then);
-  void cancel_route(const std::string& why);
   void advance_route(const a3lcm::fc_status_t& s);
-  std::optional<Eigen::Vector3d> position() const;  // the fc's estimate
-  // The fc's position and battery, or false after answering a refusal (no telemetry yet).
-  bool require_telemetry(Eigen::Vector3d* p_W_m, double* battery_pct);
-  nlohmann::json pose_now() const;                  // the fc's estimate, or null
-  void answer_motion(const a3lcm::fc_status_t* s, nlohmann::json accepted_extra);
-
-  // Motion tools (motion_tools.cpp).
-  void tool_takeoff(const nlohmann::json& args);
-  void tool_set_waypoint(const nlohmann::json& args);
-  void tool_set_altitude(const nlohmann::json& args);
-  void tool_navigate_to(const nlohmann::json& args);
-  void tool_execute_maneuver(const nlohmann::json& args);
-  void tool_hold();
-  void tool_land();
-  void tool_return_to_home();
-  void tool_adjust_speed(const nlohmann::json& args);
-  void start_route(OnboardRoute route, nlohmann::json extra);
-  // Query tools (query_tools.cpp).
-  void tool_read_telemetry(const nlohmann::json& args);
-  void tool_check_geofence(const nlohmann::json& args);
-  // Sensor and network tools (payload_tools.cpp).
-  void tool_activate_sensor(const nlohmann::json& args);
-  void tool_capture_image(const nlohmann::json& args);
-  void tool_switch_network_slice(const nlohmann::json& args);
-  const ImageRecord& capture(const SensorInfo& sensor, bool downlink);
-  void publish_payload_event(const std::string& kind, const std::string& sensor, const ImageRecord* image);
-  // The peers' view of our vehicle (true state and the path it is about to fly).
-  SelfView self_view() const;
   void true_pose(Eigen::Vector3d* p_W_m, double* yaw_deg) const;
+
+  // What the handlers may do (vehicle_services.hpp; tool_server_services.cpp, self_view.cpp).
+  void finish_mcp(const nlohmann::json& result, int64_t extra_bytes = 0) override;
+  void finish_error(const std::string& message) override;
+  void finish_gate_refusal(const std::string& reason) override;
+  int32_t send_fc(int8_t command, const Eigen::Vector3d& target_W_m, double speed_mps, double yaw_deg) override;
+  void await_status(int32_t seq, StatusContinuation then) override;
+  const a3lcm::fc_status_t* fc_status() const override { return fc_status_ ? &*fc_status_ : nullptr; }
+  std::optional<Eigen::Vector3d> position() const override;  // the fc's estimate
+  nlohmann::json pose_now() const override;
+  double speed_mps() const override { return speed_mps_; }
+  void set_speed_mps(double speed_mps) override { speed_mps_ = speed_mps; }
+  void set_takeoff_target(const Eigen::Vector3d& target_W_m) override { takeoff_target_W_m_ = target_W_m; }
+  int32_t begin_route(OnboardRoute route) override;
+  void cancel_route(const std::string& why) override;
+  OnboardRoute* onboard_route() override { return route_ ? &*route_ : nullptr; }
+  SensorSuite& sensor_suite() override { return sensors_; }
+  ImageStore& image_store() override { return images_; }
+  const ImageRecord& capture(const SensorInfo& sensor, bool downlink) override;
+  void publish_payload_event(const std::string& kind, const std::string& sensor, const ImageRecord* image) override;
+  void count_image_bytes_downlinked(int64_t bytes) override;
+  const a3lcm::network_state_t* network_state() const override { return net_ ? &*net_ : nullptr; }
+  void request_slice_switch(const std::string& slice, SliceContinuation then) override;
+  SelfView self_view() const override;  // true state and the path it is about to fly
+  SwarmPeer& swarm_peer() override { return swarm_; }
+  const WeatherService& weather_service() const override { return weather_; }
+  const GroundStation& ground_station() const override { return ground_station_; }
+  double now_s() const override;
+  int64_t now_us() const override;
 
   ToolServerConfig config_;
   const ToolCatalog& catalog_;
+  ToolHandlers handlers_;
   SafetyGate gate_;
   SensorSuite sensors_;
   SwarmPeer swarm_;
