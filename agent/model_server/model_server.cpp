@@ -1,15 +1,19 @@
-// The OpenAI-compatible model server: routes, validation, authentication, fault injection,
-// latency, logging.
+// The OpenAI-compatible model server: routes, admission (authentication, body, validation,
+// fault injection), latency, answers and streams, logging.
 #include "agent/model_server/model_server.hpp"
 
 #include <httplib.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
 #include <stdexcept>
+
+#include "agent/model_server/reply_shaping.hpp"
+#include "agent/model_server/request_body.hpp"
 
 namespace a3::agent::model_server {
 namespace {
@@ -43,20 +47,10 @@ std::size_t content_characters(const json& content) {
   return n;
 }
 
-const char* error_type(int status) {
-  switch (status) {
-    case 401: return "authentication_error";
-    case 429: return "rate_limit_error";
-    case 404: return "not_found_error";
-    default: return status >= 500 ? "server_error" : "invalid_request_error";
-  }
-}
-
-void set_error(httplib::Response& res, int status, const std::string& message, double retry_after_s = 0.0) {
-  res.status = status;
+void set_error(httplib::Response& res, const ApiError& error, double retry_after_s = 0.0) {
+  res.status = error.status;
   if (retry_after_s > 0.0) res.set_header("Retry-After", std::to_string(static_cast<long>(std::ceil(retry_after_s))));
-  const json body = {{"error", {{"message", message}, {"type", error_type(status)}, {"code", status}}}};
-  res.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
+  res.set_content(openai_error_body(error).dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
 }
 
 int64_t usage_count(const json& usage, const char* key) {
@@ -85,58 +79,6 @@ std::size_t prompt_characters(const json& request) {
     }
   }
   return n;
-}
-
-std::string chat_request_problem(const json& request) {
-  if (!request.is_object()) return "the request body must be a JSON object";
-  const auto model = request.find("model");
-  if (model == request.end()) return "'model' is required";
-  if (!model->is_string() || model->get_ref<const std::string&>().empty()) return "'model' must be a non-empty string";
-  const auto messages = request.find("messages");
-  if (messages == request.end()) return "'messages' is required";
-  if (!messages->is_array() || messages->empty()) return "'messages' must be a non-empty array";
-  for (std::size_t i = 0; i < messages->size(); ++i) {
-    const json& m = (*messages)[i];
-    const std::string where = "messages[" + std::to_string(i) + "]";
-    if (!m.is_object()) return where + " must be an object {role, content}";
-    const auto role = m.find("role");
-    if (role == m.end() || !role->is_string()) return where + ".role must be a string";
-    const std::string& r = role->get_ref<const std::string&>();
-    if (r != "system" && r != "user" && r != "assistant" && r != "tool" && r != "developer") {
-      return where + ".role must be one of system, user, assistant, tool, developer (got '" + r + "')";
-    }
-    const auto content = m.find("content");
-    if (content == m.end()) return where + ".content is required";
-    const bool ok = content->is_string() || content->is_array() || (content->is_null() && r == "assistant");
-    if (!ok) return where + ".content must be a string or an array of content parts";
-    if (content->is_array()) {
-      for (std::size_t j = 0; j < content->size(); ++j) {
-        const json& part = (*content)[j];
-        if (!part.is_string() && !(part.is_object() && part.contains("type") && part["type"].is_string())) {
-          return where + ".content[" + std::to_string(j) + "] must be a content part {type, ...}";
-        }
-      }
-    }
-  }
-  if (const auto t = request.find("temperature"); t != request.end() && !t->is_null()) {
-    if (!t->is_number() || t->get<double>() < 0.0 || t->get<double>() > 2.0) {
-      return "'temperature' must be a number between 0 and 2";
-    }
-  }
-  for (const char* key : {"max_tokens", "max_completion_tokens"}) {
-    if (const auto t = request.find(key); t != request.end() && !t->is_null()) {
-      if (!t->is_number_integer() || t->get<int64_t>() < 1) return std::string("'") + key + "' must be an integer >= 1";
-    }
-  }
-  if (const auto f = request.find("response_format"); f != request.end() && !f->is_null()) {
-    if (!f->is_object() || !f->contains("type") || !(*f)["type"].is_string()) {
-      return "'response_format' must be an object {\"type\": ...}";
-    }
-  }
-  if (const auto s = request.find("stream"); s != request.end() && s->is_boolean() && s->get<bool>()) {
-    return "'stream': true is not supported by this server";
-  }
-  return "";
 }
 
 ModelServer::ModelServer(std::unique_ptr<ModelResponder> responder, ModelServerOptions options, LogLine log)
@@ -218,8 +160,12 @@ void ModelServer::start() {
   http_->set_keep_alive_max_count(1000);
   http_->set_payload_max_length(options_.max_request_bytes);
   http_->set_tcp_nodelay(true);
-  http_->Post("/v1/chat/completions", [this](const httplib::Request& req, httplib::Response& res) { handle_chat(req, res); });
+  // The content-reader form of Post: httplib then leaves the body to us (no form parsing, whose
+  // own 8 KiB limit answered 413 to form bodies).
+  http_->Post("/v1/chat/completions", [this](const httplib::Request& req, httplib::Response& res,
+                                             const httplib::ContentReader& reader) { handle_chat(req, res, reader); });
   http_->Get("/v1/models", [this](const httplib::Request& req, httplib::Response& res) { handle_models(req, res); });
+  http_->Get(R"(/v1/models/(.+))", [this](const httplib::Request& req, httplib::Response& res) { handle_model(req, res); });
   http_->set_error_handler(httplib::Server::HandlerWithResponse([this](const httplib::Request& req,
                                                                         httplib::Response& res) {
     if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
@@ -231,8 +177,9 @@ void ModelServer::start() {
     const std::string message = res.status == 413 ? "request body larger than " +
                                                         std::to_string(options_.max_request_bytes) + " bytes"
                                                   : "no route for " + req.method + " " + req.path +
-                                                        " (this server has POST /v1/chat/completions and GET /v1/models)";
-    set_error(res, res.status, message);
+                                                        " (this server has POST /v1/chat/completions, GET /v1/models "
+                                                        "and GET /v1/models/{id})";
+    set_error(res, {res.status, message, std::nullopt, std::nullopt});
     log(req.method + " " + req.path + " " + std::to_string(res.status) + " " + message);
     return httplib::Server::HandlerResponse::Handled;
   }));
@@ -244,7 +191,7 @@ void ModelServer::start() {
       what = e.what();
     } catch (...) {
     }
-    set_error(res, 500, "internal error: " + what);
+    set_error(res, {500, "internal error: " + what, std::nullopt, std::nullopt});
     log(req.method + " " + req.path + " 500 internal error: " + what);
   });
 
@@ -280,16 +227,27 @@ void ModelServer::stop() {
   if (thread_.joinable()) thread_.join();
 }
 
-void ModelServer::handle_models(const httplib::Request& req, httplib::Response& res) {
+
+void ModelServer::send_error(httplib::Response& res, const ApiError& error, double retry_after_s, const std::string& what,
+                             uint64_t ModelServerStats::*counter) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     ++stats_.requests;
-    if (!authorized(req)) ++stats_.unauthorized;
+    if (counter != nullptr) ++(stats_.*counter);
   }
+  set_error(res, error, retry_after_s);
+  log(what + " " + std::to_string(error.status) + " " + error.message);
+}
+
+void ModelServer::handle_models(const httplib::Request& req, httplib::Response& res) {
   if (!authorized(req)) {
-    set_error(res, 401, "missing or wrong API key: send Authorization: Bearer <key>");
-    log("GET /v1/models 401 unauthorized");
+    send_error(res, {401, "missing or wrong API key: send Authorization: Bearer <key>", std::nullopt, std::nullopt}, 0.0,
+               "GET /v1/models", &ModelServerStats::unauthorized);
     return;
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++stats_.requests;
   }
   json data = json::array();
   for (const auto& id : options_.model_ids) {
@@ -298,109 +256,172 @@ void ModelServer::handle_models(const httplib::Request& req, httplib::Response& 
   res.set_content(json({{"object", "list"}, {"data", data}}).dump(), "application/json");
 }
 
-void ModelServer::handle_chat(const httplib::Request& req, httplib::Response& res) {
-  const auto t0 = SteadyClock::now();
-  const std::string route = "POST /v1/chat/completions";
-  auto count = [this](uint64_t ModelServerStats::*field) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    ++stats_.requests;
-    if (field != nullptr) ++(stats_.*field);
-  };
-  auto fail = [&](uint64_t ModelServerStats::*field, int status, const std::string& message, double retry_after_s,
-                  const std::string& model) {
-    count(field);
-    set_error(res, status, message, retry_after_s);
-    log(route + " " + std::to_string(status) + (model.empty() ? "" : " model=" + model) + " " + message);
-  };
-
+void ModelServer::handle_model(const httplib::Request& req, httplib::Response& res) {
+  const std::string id = req.matches[1];
+  const std::string what = "GET /v1/models/" + id;
   if (!authorized(req)) {
-    fail(&ModelServerStats::unauthorized, 401, "missing or wrong API key: send Authorization: Bearer <key>", 0.0, "");
+    send_error(res, {401, "missing or wrong API key: send Authorization: Bearer <key>", std::nullopt, std::nullopt}, 0.0, what,
+               &ModelServerStats::unauthorized);
     return;
   }
+  if (std::find(options_.model_ids.begin(), options_.model_ids.end(), id) == options_.model_ids.end()) {
+    send_error(res, {404, "the model '" + id + "' does not exist on this server (GET /v1/models lists them)", "model",
+                     "model_not_found"}, 0.0, what, &ModelServerStats::bad_requests);
+    return;
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++stats_.requests;
+  }
+  res.set_content(json({{"id", id}, {"object", "model"}, {"created", 0}, {"owned_by", "a3rig"}}).dump(), "application/json");
+}
+
+std::optional<ApiError> ModelServer::admit_chat(const httplib::Request& req, const httplib::ContentReader& reader,
+                                                json& request) {
+  if (!authorized(req)) return ApiError{401, "missing or wrong API key: send Authorization: Bearer <key>", std::nullopt, std::nullopt};
+  const std::string media = media_type(req.get_header_value("Content-Type"));
+  if (auto e = form_body_error(media)) return e;
+  std::string body;
+  const bool read = reader([&body](const char* data, std::size_t n) {
+    body.append(data, n);
+    return true;
+  });
+  if (!read) {
+    return ApiError{413, "request body larger than " + std::to_string(options_.max_request_bytes) + " bytes, or cut short",
+                    std::nullopt, std::nullopt};
+  }
+  if (auto e = parse_json_body(body, media, request)) return e;
+  return chat_request_error(request);
+}
+
+std::optional<ApiError> ModelServer::injected_failure(uint64_t& index) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  index = chat_requests_++;
+  const bool inject = index < static_cast<uint64_t>(options_.fail_first) ||
+                      (options_.fail_rate > 0.0 && fault_rng_.bernoulli(options_.fail_rate));
+  if (!inject) return std::nullopt;
+  return ApiError{options_.fail_status,
+                  "injected failure (--fail-rate / --fail-first), status " + std::to_string(options_.fail_status),
+                  std::nullopt, std::nullopt};
+}
+
+std::vector<ResponderReply> ModelServer::answer(const json& request, const ChatOptions& options, uint64_t index,
+                                                json& usage) {
+  std::vector<ResponderReply> choices;
+  int64_t prompt_tokens = -1, completion_tokens = 0;
+  for (int i = 0; i < options.n; ++i) {
+    ResponderReply reply;
+    {
+      std::lock_guard<std::mutex> lock(responder_mutex_);
+      reply = responder_->respond(request);
+    }
+    shape_reply(reply, options, std::to_string(index) + (options.n > 1 ? "_" + std::to_string(i) : ""));
+    // Counts the responder did not give are estimated from characters.
+    const json u = reply.usage.is_object() ? reply.usage : json::object();
+    if (prompt_tokens < 0) prompt_tokens = usage_count(u, "prompt_tokens");
+    int64_t c = usage_count(u, "completion_tokens");
+    if (c < 0) {
+      std::size_t chars = utf8_code_points(reply.content);
+      for (const auto& call : reply.tool_calls) chars += call.name.size() + call.arguments.size();
+      c = estimate_tokens(chars);
+    }
+    completion_tokens += c;
+    if (i == 0) usage = u;
+    choices.push_back(std::move(reply));
+  }
+  if (prompt_tokens < 0) prompt_tokens = estimate_tokens(prompt_characters(request));
+  usage["prompt_tokens"] = prompt_tokens;
+  usage["completion_tokens"] = completion_tokens;
+  usage["total_tokens"] = prompt_tokens + completion_tokens;
+  return choices;
+}
+
+void ModelServer::send_stream(httplib::Response& res, std::vector<json> chunks, double gap_s) {
+  auto events = std::make_shared<std::vector<std::string>>();
+  for (const auto& c : chunks) events->push_back("data: " + c.dump(-1, ' ', false, json::error_handler_t::replace) + "\n\n");
+  events->push_back("data: [DONE]\n\n");
+  auto next = std::make_shared<std::size_t>(0);
+  res.status = 200;
+  res.set_header("Cache-Control", "no-cache");
+  res.set_chunked_content_provider("text/event-stream", [this, events, next, gap_s](std::size_t, httplib::DataSink& sink) {
+    if (*next > 0 && *next + 1 < events->size() && !wait_or_stop(gap_s)) return false;  // stopping: cut the stream
+    const std::string& e = (*events)[(*next)++];
+    if (!sink.write(e.data(), e.size())) return false;
+    if (*next == events->size()) sink.done();
+    return true;
+  });
+}
+
+void ModelServer::handle_chat(const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader) {
+  const auto t0 = SteadyClock::now();
+  const std::string route = "POST /v1/chat/completions";
   struct InFlight {
     std::atomic<int>& n;
     int now;
     explicit InFlight(std::atomic<int>& c) : n(c), now(++c) {}
     ~InFlight() { --n; }
   } in_flight(in_flight_);
-  if (options_.max_concurrency > 0 && in_flight.now > options_.max_concurrency) {
-    fail(&ModelServerStats::refused_busy, 429,
-         "server busy: more than " + std::to_string(options_.max_concurrency) + " requests at once (--max-concurrency)",
-         options_.retry_after_s, "");
+  if (options_.max_concurrency > 0 && in_flight.now > options_.max_concurrency && authorized(req)) {
+    res.set_header("Connection", "close");  // the body stays unread
+    send_error(res, {429, "server busy: more than " + std::to_string(options_.max_concurrency) +
+                              " requests at once (--max-concurrency)", std::nullopt, std::nullopt},
+               options_.retry_after_s, route, &ModelServerStats::refused_busy);
     return;
   }
-
-  const json request = json::parse(req.body, nullptr, false);
-  if (request.is_discarded()) {
-    fail(&ModelServerStats::bad_requests, 400, "the request body is not JSON", 0.0, "");
+  json request;
+  if (auto e = admit_chat(req, reader, request)) {
+    if (e->status == 415) res.set_header("Connection", "close");  // the body stays unread
+    send_error(res, *e, 0.0, route, e->status == 401 ? &ModelServerStats::unauthorized : &ModelServerStats::bad_requests);
     return;
   }
-  if (const std::string problem = chat_request_problem(request); !problem.empty()) {
-    fail(&ModelServerStats::bad_requests, 400, problem, 0.0, "");
+  uint64_t index = 0;
+  if (auto e = injected_failure(index)) {
+    send_error(res, *e, options_.retry_after_s, route, &ModelServerStats::injected_failures);
     return;
   }
   const std::string model = request["model"].get<std::string>();
-
-  bool inject = false;
-  uint64_t index;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    index = chat_requests_++;
-    inject = index < static_cast<uint64_t>(options_.fail_first) ||
-             (options_.fail_rate > 0.0 && fault_rng_.bernoulli(options_.fail_rate));
-  }
-  if (inject) {
-    fail(&ModelServerStats::injected_failures, options_.fail_status,
-         "injected failure (--fail-rate / --fail-first), status " + std::to_string(options_.fail_status),
-         options_.retry_after_s, model);
-    return;
-  }
-
-  ResponderReply reply;
+  const ChatOptions options = chat_options(request);
+  json usage;
+  std::vector<ResponderReply> choices;
   try {
-    std::lock_guard<std::mutex> lock(responder_mutex_);
-    reply = responder_->respond(request);
+    choices = answer(request, options, index, usage);
+  } catch (const BadRequest& e) {
+    send_error(res, {400, e.what(), e.param(), "invalid_value"}, 0.0, route + " model=" + model,
+               &ModelServerStats::bad_requests);
+    return;
   } catch (const std::invalid_argument& e) {
-    fail(&ModelServerStats::bad_requests, 400, e.what(), 0.0, model);
+    send_error(res, {400, e.what(), std::nullopt, std::nullopt}, 0.0, route + " model=" + model,
+               &ModelServerStats::bad_requests);
     return;
   } catch (const std::exception& e) {
-    fail(&ModelServerStats::responder_errors, 500, responder_name_ + " responder failed: " + e.what(), 0.0, model);
+    send_error(res, {500, responder_name_ + " responder failed: " + e.what(), std::nullopt, std::nullopt}, 0.0,
+               route + " model=" + model, &ModelServerStats::responder_errors);
     return;
   }
-
-  // Usage as OpenAI sends it; counts the responder did not give are estimated from characters.
-  const std::size_t prompt_chars = prompt_characters(request);
-  if (!reply.usage.is_object()) reply.usage = json::object();
-  int64_t prompt_tokens = usage_count(reply.usage, "prompt_tokens");
-  int64_t completion_tokens = usage_count(reply.usage, "completion_tokens");
-  if (prompt_tokens < 0) reply.usage["prompt_tokens"] = prompt_tokens = estimate_tokens(prompt_chars);
-  if (completion_tokens < 0) {
-    reply.usage["completion_tokens"] = completion_tokens = estimate_tokens(utf8_code_points(reply.content));
-  }
-  if (usage_count(reply.usage, "total_tokens") < 0) reply.usage["total_tokens"] = prompt_tokens + completion_tokens;
 
   double latency_s;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    latency_s = latency_.latency_s(reply, latency_rng_);
+    latency_s = latency_.latency_s(choices.front(), latency_rng_);
   }
   const double elapsed_s = std::chrono::duration<double>(SteadyClock::now() - t0).count();
-  if (!wait_or_stop(latency_s - elapsed_s)) {
-    fail(nullptr, 503, "server shutting down", 0.0, model);
+  const double first_s = options.stream ? latency_s * kFirstChunkShare : latency_s;
+  if (!wait_or_stop(first_s - elapsed_s)) {
+    send_error(res, {503, "server shutting down", std::nullopt, std::nullopt}, 0.0, route + " model=" + model);
     return;
   }
 
-  const json body = {{"id", "chatcmpl-a3rig-" + std::to_string(index)},
-                     {"object", "chat.completion"},
-                     {"created", static_cast<int64_t>(std::time(nullptr))},
-                     {"model", model},
-                     {"choices",
-                      json::array({{{"index", 0},
-                                    {"message", {{"role", "assistant"}, {"content", reply.content}}},
-                                    {"finish_reason", reply.finish_reason.empty() ? "stop" : reply.finish_reason}}})},
-                     {"usage", reply.usage}};
-  res.status = 200;
-  res.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
+  const CompletionHeader header{"chatcmpl-a3rig-" + std::to_string(index), static_cast<int64_t>(std::time(nullptr)), model};
+  if (options.stream) {
+    std::vector<json> chunks = completion_chunks(header, choices, options.include_usage ? usage : json());
+    const double later_chunks = static_cast<double>(std::max<std::size_t>(1, chunks.size() - 1));
+    send_stream(res, std::move(chunks), latency_s * (1.0 - kFirstChunkShare) / later_chunks);
+  } else {
+    res.status = 200;
+    res.set_content(completion_json(header, choices, usage).dump(-1, ' ', false, json::error_handler_t::replace),
+                    "application/json");
+  }
+  const int64_t prompt_tokens = usage["prompt_tokens"], completion_tokens = usage["completion_tokens"];
   {
     std::lock_guard<std::mutex> lock(mutex_);
     ++stats_.requests;
@@ -410,9 +431,9 @@ void ModelServer::handle_chat(const httplib::Request& req, httplib::Response& re
     stats_.completion_tokens += completion_tokens;
   }
   const double took_s = std::chrono::duration<double>(SteadyClock::now() - t0).count();
-  log(route + " 200 model=" + model + " prompt_chars=" + std::to_string(prompt_chars) +
-      fmt(" latency=%.3fs", latency_s) + " tokens=" + std::to_string(prompt_tokens) + "+" +
-      std::to_string(completion_tokens) + fmt(" took=%.3fs", took_s));
+  log(route + " 200 model=" + model + (options.stream ? " stream" : "") + (options.n > 1 ? " n=" + std::to_string(options.n) : "") +
+      " prompt_chars=" + std::to_string(prompt_characters(request)) + fmt(" latency=%.3fs", latency_s) + " tokens=" +
+      std::to_string(prompt_tokens) + "+" + std::to_string(completion_tokens) + fmt(" took=%.3fs", took_s));
 }
 
 }  // namespace a3::agent::model_server

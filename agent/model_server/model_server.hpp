@@ -1,8 +1,15 @@
 // The OpenAI-compatible HTTP server behind `a3rig serve-model` (cpp-httplib): POST
 // /v1/chat/completions answered by a ModelResponder after a latency drawn from a LatencyModel,
-// and GET /v1/models. Requests are validated (400 with an OpenAI-style error naming what is
-// wrong), optionally authenticated (401), and may be failed on purpose (fault injection for
-// testing clients: a fail rate, the first N requests, a concurrency limit), with Retry-After.
+// GET /v1/models and GET /v1/models/{id}. Requests are validated (chat_request.hpp: 400 naming
+// the field; request_body.hpp: 415 for bodies that are not JSON), optionally authenticated
+// (401), and may be failed on purpose (fault injection for testing clients: a fail rate, the
+// first N requests, a concurrency limit), with Retry-After. Every error is OpenAI's error object
+// (openai_error.hpp). The reply honours n (the responder is asked once per choice), tools /
+// tool_choice and response_format (reply_shaping.hpp), and stream: true (server-sent events of
+// chat.completion.chunk objects, completion_json.hpp, then "data: [DONE]"). Streaming latency:
+// the latency model's draw is the total time; the first chunk (the headers and the role delta)
+// comes after kFirstChunkShare of it, and the remaining chunks are spread evenly over the rest,
+// the last one at the full draw. stop() ends waiting answers and streams at once.
 // Requests are handled concurrently by a pool of worker threads; the responder is called under a
 // lock (responders need not be thread-safe), the latency waits are not.
 #pragma once
@@ -13,6 +20,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -23,8 +31,13 @@
 #include "agent/model_server/model_responder.hpp"
 #include "common/rng.hpp"
 
+#include "agent/model_server/chat_request.hpp"
+#include "agent/model_server/completion_json.hpp"
+#include "agent/model_server/openai_error.hpp"
+
 namespace httplib {
 class Server;
+class ContentReader;
 struct Request;
 struct Response;
 }  // namespace httplib
@@ -52,7 +65,7 @@ struct ModelServerOptions {
 struct ModelServerStats {
   uint64_t requests = 0;           // every HTTP request
   uint64_t answered = 0;           // chat completions answered with 200
-  uint64_t bad_requests = 0;       // 400, 404, 413
+  uint64_t bad_requests = 0;       // 400, 404, 413, 415
   uint64_t unauthorized = 0;       // 401
   uint64_t injected_failures = 0;  // --fail-rate / --fail-first
   uint64_t refused_busy = 0;       // --max-concurrency
@@ -67,9 +80,9 @@ struct ModelServerStats {
 int64_t estimate_tokens(std::size_t characters);
 // Characters (UTF-8 code points) of every message's content in a chat-completions request.
 std::size_t prompt_characters(const nlohmann::json& request);
-// Checks a chat-completions request body; returns "" when usable, else what is wrong
-// ("'messages' must be a non-empty array", "messages[1].role must be one of ...").
-std::string chat_request_problem(const nlohmann::json& request);
+
+// Share of the latency before a stream's first chunk (the rest spreads the other chunks).
+constexpr double kFirstChunkShare = 0.5;
 
 class ModelServer {
  public:
@@ -95,9 +108,23 @@ class ModelServer {
   const std::string& responder_name() const { return responder_name_; }
 
  private:
-  void handle_chat(const httplib::Request& req, httplib::Response& res);
+  void handle_chat(const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader);
   void handle_models(const httplib::Request& req, httplib::Response& res);
+  void handle_model(const httplib::Request& req, httplib::Response& res);
   bool authorized(const httplib::Request& req) const;
+  // The 401 / 413 / 415 / 400 that refuses the request, else nothing (`request` is filled).
+  std::optional<ApiError> admit_chat(const httplib::Request& req, const httplib::ContentReader& reader,
+                                     nlohmann::json& request);
+  // Numbers the chat request (`index`) and draws whether it fails on purpose.
+  std::optional<ApiError> injected_failure(uint64_t& index);
+  // One reply per choice, shaped to the options, with the usage of them all in `usage`.
+  std::vector<ResponderReply> answer(const nlohmann::json& request, const ChatOptions& options, uint64_t index,
+                                     nlohmann::json& usage);
+  // Answers `error`, counts the request (and `counter`), logs "<what> <status> <message>".
+  void send_error(httplib::Response& res, const ApiError& error, double retry_after_s, const std::string& what,
+                  uint64_t ModelServerStats::*counter = nullptr);
+  // Sets the chunked provider that sends `chunks` as events, `gap_s` apart, then [DONE].
+  void send_stream(httplib::Response& res, std::vector<nlohmann::json> chunks, double gap_s);
   bool wait_or_stop(double seconds);  // false when stopping
   void log(const std::string& line);
 

@@ -7,7 +7,9 @@
 
 #include "agent/conversation/scripted_agent.hpp"
 #include "agent/llm/context_json.hpp"
+#include "agent/model_server/chat_request.hpp"
 #include "agent/model_server/model_server.hpp"
+#include "agent/model_server/reply_shaping.hpp"
 
 namespace a3::agent::model_server {
 namespace {
@@ -43,27 +45,81 @@ nlohmann::json telemetry_before(const std::vector<Turn>& dialogue, std::size_t u
   return latest;
 }
 
-}  // namespace
-
-ResponderReply ScriptedResponder::respond(const nlohmann::json& request) {
-  if (!request.is_object() || !request.contains("messages") || !request["messages"].is_array()) {
-    throw std::invalid_argument("request: 'messages' must be an array of chat messages");
-  }
-  const auto& messages = request["messages"];
-  std::optional<nlohmann::json> block;
-  for (std::size_t i = messages.size(); i-- > 0 && !block;) {
+// The request's last user message that carries a context block, as JSON; nothing when none does.
+std::optional<nlohmann::json> context_block(const nlohmann::json& messages) {
+  for (std::size_t i = messages.size(); i-- > 0;) {
     if (messages[i].is_object() && messages[i].value("role", "") == "user") {
-      block = llm::find_context_block(message_text(messages[i]));
+      if (auto block = llm::find_context_block(message_text(messages[i]))) return block;
     }
   }
-  if (!block) {
-    throw std::invalid_argument(
-        "the scripted responder answers a3rig's llm agent turns only: no user message of the request carries the "
-        "context block (a JSON object with \"" + std::string(llm::kContextMarker) + "\": " +
-        std::to_string(llm::kContextVersion) + ", as `a3rig run --agent llm` sends)");
-  }
-  const llm::RebuiltContext context = llm::context_from_json(*block);
+  return std::nullopt;
+}
 
+bool wants_calls(const ChatOptions& options) {
+  return !options.functions.empty() && options.tool_choice != ToolChoice::kNone;
+}
+
+void set_usage(ResponderReply& reply, const nlohmann::json& request) {
+  std::size_t completion_chars = reply.content.size();
+  for (const auto& c : reply.tool_calls) completion_chars += c.name.size() + c.arguments.size();
+  const int64_t prompt_tokens = estimate_tokens(prompt_characters(request));
+  const int64_t completion_tokens = estimate_tokens(completion_chars);
+  reply.usage = {{"prompt_tokens", prompt_tokens},
+                 {"completion_tokens", completion_tokens},
+                 {"total_tokens", prompt_tokens + completion_tokens}};
+}
+
+// Every function the request offers must be one the scripted policy can call.
+void check_functions(const ChatOptions& options, const ToolCatalog& tools) {
+  for (std::size_t i = 0; i < options.functions.size(); ++i) {
+    const std::string name = options.functions[i]["name"].get<std::string>();
+    if (tools.find_function(name) != nullptr) continue;
+    std::string known;
+    for (const auto& f : tools.functions()) known += (known.empty() ? "" : ", ") + f.name;
+    const std::string param = "tools[" + std::to_string(i) + "].function.name";
+    throw BadRequest(param + " '" + name + "' is not a function the scripted responder can call (a3rig's tool "
+                     "catalog has: " + known + ")", param);
+  }
+}
+
+bool offered(const ChatOptions& options, const std::string& name) { return find_function(options, name) != nullptr; }
+
+// The decision as tool calls: one per action, then report_turn {intent, text} when offered.
+void decision_as_calls(const AgentDecision& d, const ChatOptions& options, const std::string& report,
+                       ResponderReply& reply) {
+  for (const auto& action : d.actions) {
+    const std::string name = ToolCatalog::function_name_of(action);
+    const nlohmann::json args = action.value("type", "") == "a2a" ? action.value("payload", nlohmann::json::object())
+                                                                  : action.value("args", nlohmann::json::object());
+    if (!name.empty() && offered(options, name)) reply.tool_calls.push_back({"", name, args.dump()});
+  }
+  if (offered(options, report)) {
+    reply.tool_calls.push_back({"", report, nlohmann::json({{"intent", d.intent}, {"text", d.text}}).dump()});
+  } else {
+    reply.content = d.text;
+  }
+}
+
+// A client that is not a3rig: a call of the chosen (or first) function with arguments made from
+// its schema, or a short text.
+ResponderReply generic_reply(const ChatOptions& options) {
+  ResponderReply reply;
+  if (wants_calls(options)) {
+    const std::string name = options.tool_choice == ToolChoice::kNamed ? options.chosen_function
+                                                                        : options.functions.front()["name"].get<std::string>();
+    reply.tool_calls.push_back(generated_call(*find_function(options, name)));
+    reply.finish_reason = "tool_calls";
+    return reply;
+  }
+  reply.content = "Hello from a3rig's scripted responder. It flies a3rig's llm agent turns (requests carrying a3rig's "
+                  "context block); to other requests it gives this answer.";
+  return reply;
+}
+
+}  // namespace
+
+AgentDecision ScriptedResponder::decide(const nlohmann::json& block) const {
+  const llm::RebuiltContext context = llm::context_from_json(block);
   // Replay the earlier agent turns so that the plan stands where it stood.
   ScriptedAgent agent;
   for (std::size_t j = 0; j < context.dialogue.size(); ++j) {
@@ -78,15 +134,27 @@ ResponderReply ScriptedResponder::respond(const nlohmann::json& request) {
     then.mission_time_s = t.started_s;
     agent.decide(then);
   }
-  const AgentDecision d = agent.decide(context.view(tools_));
+  return agent.decide(context.view(tools_));
+}
 
+ResponderReply ScriptedResponder::respond(const nlohmann::json& request) {
+  if (!request.is_object() || !request.contains("messages") || !request["messages"].is_array()) {
+    throw std::invalid_argument("request: 'messages' must be an array of chat messages");
+  }
+  const ChatOptions options = chat_options(request);
+  const std::optional<nlohmann::json> block = context_block(request["messages"]);
   ResponderReply reply;
-  reply.content = nlohmann::json({{"intent", d.intent}, {"text", d.text}, {"actions", d.actions}}).dump();
-  const int64_t prompt_tokens = estimate_tokens(prompt_characters(request));
-  const int64_t completion_tokens = estimate_tokens(reply.content.size());
-  reply.usage = {{"prompt_tokens", prompt_tokens},
-                 {"completion_tokens", completion_tokens},
-                 {"total_tokens", prompt_tokens + completion_tokens}};
+  if (!block) {
+    reply = generic_reply(options);
+  } else if (wants_calls(options)) {
+    check_functions(options, tools_);
+    decision_as_calls(decide(*block), options, tools_.turn_call().name, reply);
+    if (!reply.tool_calls.empty()) reply.finish_reason = "tool_calls";
+  } else {
+    const AgentDecision d = decide(*block);
+    reply.content = nlohmann::json({{"intent", d.intent}, {"text", d.text}, {"actions", d.actions}}).dump();
+  }
+  set_usage(reply, request);
   return reply;
 }
 

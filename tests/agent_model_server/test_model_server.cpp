@@ -97,38 +97,86 @@ TEST(ModelServer, AnswersInTheOpenAiShape) {
   EXPECT_EQ(stats.prompt_tokens, 3);
 }
 
-TEST(ModelServer, RejectsBadRequestsWith400NamingTheProblem) {
+// {body, a piece of the message, the `param` OpenAI's error object must name ("" : null)}.
+struct BadCase {
+  std::string body, expected, param;
+};
+
+std::string with_user(const std::string& extra) {
+  return R"({"model":"m","messages":[{"role":"user","content":"x"}])" + extra + "}";
+}
+
+const std::string kTool = R"({"type":"function","function":{"name":"hover","parameters":{"type":"object"}}})";
+
+TEST(ModelServer, RejectsBadRequestsWith400NamingTheProblemAndTheField) {
   Served s({});
-  const std::vector<std::pair<std::string, std::string>> cases = {
-      {"{not json", "not JSON"},
-      {"[1,2]", "must be a JSON object"},
-      {R"({"messages":[{"role":"user","content":"x"}]})", "'model' is required"},
-      {R"({"model":7,"messages":[{"role":"user","content":"x"}]})", "'model' must be a non-empty string"},
-      {R"({"model":"m"})", "'messages' is required"},
-      {R"({"model":"m","messages":"hello"})", "'messages' must be a non-empty array"},
-      {R"({"model":"m","messages":[]})", "'messages' must be a non-empty array"},
-      {R"({"model":"m","messages":["hello"]})", "messages[0] must be an object"},
-      {R"({"model":"m","messages":[{"content":"x"}]})", "messages[0].role must be a string"},
+  const std::vector<BadCase> cases = {
+      {"{not json", "not JSON", ""},
+      {"[1,2]", "must be a JSON object", ""},
+      {R"({"messages":[{"role":"user","content":"x"}]})", "'model' is required", "model"},
+      {R"({"model":7,"messages":[{"role":"user","content":"x"}]})", "'model' must be a non-empty string", "model"},
+      {R"({"model":"m"})", "'messages' is required", "messages"},
+      {R"({"model":"m","messages":"hello"})", "'messages' must be a non-empty array", "messages"},
+      {R"({"model":"m","messages":[]})", "'messages' must be a non-empty array", "messages"},
+      {R"({"model":"m","messages":["hello"]})", "messages[0] must be an object", "messages[0]"},
+      {R"({"model":"m","messages":[{"content":"x"}]})", "messages[0].role must be a string", "messages[0].role"},
       {R"({"model":"m","messages":[{"role":"user","content":"x"},{"role":"robot","content":"x"}]})",
-       "messages[1].role must be one of"},
-      {R"({"model":"m","messages":[{"role":"user"}]})", "messages[0].content is required"},
-      {R"({"model":"m","messages":[{"role":"user","content":42}]})", "messages[0].content must be a string"},
-      {R"({"model":"m","messages":[{"role":"user","content":"x"}],"temperature":"hot"})", "'temperature'"},
-      {R"({"model":"m","messages":[{"role":"user","content":"x"}],"max_tokens":0})", "'max_tokens'"},
-      {R"({"model":"m","messages":[{"role":"user","content":"x"}],"stream":true})", "'stream'"},
+       "messages[1].role must be one of", "messages[1].role"},
+      {R"({"model":"m","messages":[{"role":"user"}]})", "messages[0].content is required", "messages[0].content"},
+      {R"({"model":"m","messages":[{"role":"user","content":42}]})", "messages[0].content must be a string",
+       "messages[0].content"},
+      {R"({"model":"m","messages":[{"role":"tool","content":"x"}]})", "tool_call_id", "messages[0].tool_call_id"},
+      {with_user(R"(,"temperature":"hot")"), "'temperature'", "temperature"},
+      {with_user(R"(,"max_tokens":0)"), "'max_tokens'", "max_tokens"},
+      {with_user(R"(,"stream":"yes")"), "'stream' must be a boolean", "stream"},
+      {with_user(R"(,"stream_options":{"include_usage":true})"), "only allowed when 'stream' is true", "stream_options"},
+      {with_user(R"(,"stream":true,"stream_options":{"include_usage":1})"), "include_usage",
+       "stream_options.include_usage"},
+      {with_user(R"(,"n":0)"), "'n' must be an integer from 1 to 8", "n"},
+      {with_user(R"(,"n":9)"), "'n' must be an integer from 1 to 8", "n"},
+      {with_user(R"(,"n":1.5)"), "'n' must be an integer", "n"},
+      {with_user(R"(,"logprobs":true)"), "'logprobs': true is not supported", "logprobs"},
+      {with_user(R"(,"top_logprobs":2)"), "'top_logprobs' is not supported", "top_logprobs"},
+      {with_user(R"(,"audio":{"voice":"alloy","format":"wav"})"), "'audio' output is not supported", "audio"},
+      {with_user(R"(,"modalities":["text","audio"])"), "'modalities' may only hold", "modalities"},
+      {with_user(R"(,"response_format":"json")"), "'response_format' must be an object", "response_format"},
+      {with_user(R"(,"response_format":{"type":"xml"})"), "must be text, json_object or json_schema",
+       "response_format.type"},
+      {with_user(R"(,"response_format":{"type":"json_schema"})"), "'response_format.json_schema' must be an object",
+       "response_format.json_schema"},
+      {with_user(R"(,"response_format":{"type":"json_schema","json_schema":{"schema":{}}})"),
+       "json_schema.name' must be a string", "response_format.json_schema.name"},
+      {with_user(R"(,"tools":{})"), "'tools' must be an array", "tools"},
+      {with_user(R"(,"tools":[{"type":"code_interpreter"}])"), "tools[0].type must be \"function\"", "tools[0].type"},
+      {with_user(R"(,"tools":[{"type":"function","function":{"name":"has space"}}])"), "tools[0].function.name must match",
+       "tools[0].function.name"},
+      {with_user(R"(,"tools":[{"type":"function","function":{"name":"f","parameters":[]}}])"),
+       "tools[0].function.parameters must be a JSON Schema object", "tools[0].function.parameters"},
+      {with_user(R"(,"tool_choice":"auto")"), "only allowed when 'tools' are given", "tool_choice"},
+      {with_user(R"(,"tools":[)" + kTool + R"(],"tool_choice":"always")"), "'tool_choice' must be none, auto, required",
+       "tool_choice"},
+      {with_user(R"(,"tools":[)" + kTool + R"(],"tool_choice":{"type":"function","function":{"name":"land"}})"),
+       "names function 'land', which is not among 'tools'", "tool_choice"},
+      {with_user(R"(,"tools":[)" + kTool + R"(],"parallel_tool_calls":"yes")"), "'parallel_tool_calls' must be a boolean",
+       "parallel_tool_calls"},
   };
-  for (const auto& [body, expected] : cases) {
-    const auto r = s.post(body);
+  for (const auto& c : cases) {
+    const auto r = s.post(c.body);
     ASSERT_TRUE(r);
-    EXPECT_EQ(r->status, 400) << body;
-    EXPECT_NE(error_message(r).find(expected), std::string::npos) << body << " -> " << r->body;
-    EXPECT_EQ(json::parse(r->body)["error"]["type"], "invalid_request_error") << body;
+    EXPECT_EQ(r->status, 400) << c.body;
+    EXPECT_NE(error_message(r).find(c.expected), std::string::npos) << c.body << " -> " << r->body;
+    const json error = json::parse(r->body)["error"];
+    EXPECT_EQ(error["type"], "invalid_request_error") << c.body;
+    EXPECT_EQ(error["param"], c.param.empty() ? json() : json(c.param)) << c.body;
+    EXPECT_TRUE(error["code"].is_string() || error["code"].is_null()) << c.body;
   }
   EXPECT_EQ(s.server->stats().bad_requests, cases.size());
   EXPECT_EQ(s.server->stats().answered, 0u);
-  // Content as text parts and a null assistant content are valid.
+  // Content as text parts, a null assistant content and assistant tool calls are valid.
   const auto parts = s.post(
-      R"({"model":"m","messages":[{"role":"assistant","content":null},{"role":"user","content":[{"type":"text","text":"hi"}]}]})");
+      R"({"model":"m","messages":[{"role":"assistant","content":null},{"role":"user","content":[{"type":"text","text":"hi"}]},)"
+      R"({"role":"assistant","content":null,"tool_calls":[{"id":"c1","type":"function","function":{"name":"f","arguments":"{}"}}]},)"
+      R"({"role":"tool","tool_call_id":"c1","content":"done"}]})");
   EXPECT_EQ(parts->status, 200) << parts->body;
 }
 
@@ -393,7 +441,7 @@ TEST(ModelServerWithClient, ClientRetriesAnInjected429ThenSucceeds) {
   llm::LlmClient client(endpoint_of(*s.server));
   std::vector<double> sleeps;
   client.set_sleep_for_tests([&](double sec) { sleeps.push_back(sec); });
-  const llm::LlmCallResult r = client.chat({{"system", "You fly drones."}, {"user", "Status?"}});
+  const llm::LlmCallResult r = client.chat(std::vector<llm::ChatMessage>{{"system", "You fly drones."}, {"user", "Status?"}});
   ASSERT_TRUE(r.ok) << r.error;
   EXPECT_EQ(r.content, R"({"intent":"hold"})");
   EXPECT_EQ(r.http_attempts, 2);
@@ -415,7 +463,7 @@ TEST(ModelServerWithClient, ClientGivesUpWhenTheServerKeepsFailing) {
   e.max_retries = 2;
   llm::LlmClient client(e);
   client.set_sleep_for_tests([](double) {});
-  const llm::LlmCallResult r = client.chat({{"user", "x"}});
+  const llm::LlmCallResult r = client.chat(std::vector<llm::ChatMessage>{{"user", "x"}});
   EXPECT_FALSE(r.ok);
   EXPECT_EQ(r.http_attempts, 3);
   EXPECT_NE(r.error.find("HTTP 503: injected failure"), std::string::npos) << r.error;
@@ -430,12 +478,12 @@ TEST(ModelServerWithClient, ClientSeesTheLatencyAndSendsTheKey) {
   Served s(o);
   llm::LlmEndpoint e = endpoint_of(*s.server);
   llm::LlmClient without_key(e);
-  const llm::LlmCallResult refused = without_key.chat({{"user", "x"}});
+  const llm::LlmCallResult refused = without_key.chat(std::vector<llm::ChatMessage>{{"user", "x"}});
   EXPECT_FALSE(refused.ok);
   EXPECT_EQ(refused.http_status, 401);
   e.api_key = key;
   llm::LlmClient client(e);
-  const llm::LlmCallResult r = client.chat({{"user", "x"}});
+  const llm::LlmCallResult r = client.chat(std::vector<llm::ChatMessage>{{"user", "x"}});
   ASSERT_TRUE(r.ok) << r.error;
   EXPECT_GE(r.wall_time_s, 0.25);
   ::unsetenv("A3_TEST_SERVE_KEY3");
