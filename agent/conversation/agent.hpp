@@ -74,6 +74,9 @@ class Agent {
   // After every completed turn, and once more with `over` set when the dialogue has ended
   // (`why`: e.g. "turn budget used").
   virtual void on_dialogue(const std::vector<Turn>& /*dialogue*/, bool /*over*/, const std::string& /*why*/) {}
+  // The conversation is being torn down (the run ends): a decide() blocked on another thread,
+  // waiting for something outside, must return soon (with any decision). Any thread.
+  virtual void stop_deciding() {}
 };
 
 }  // namespace a3::agent

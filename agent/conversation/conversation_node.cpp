@@ -49,7 +49,10 @@ ConversationNode::ConversationNode(ConversationConfig config, std::unique_ptr<Ag
 }
 
 ConversationNode::~ConversationNode() {
-  if (agent_thread_.joinable()) agent_thread_.join();
+  if (agent_thread_.joinable()) {
+    agent_->stop_deciding();
+    agent_thread_.join();
+  }
 }
 
 double ConversationNode::now_s() const { return executor_->clock().now_us() * 1e-6 - start_s_; }

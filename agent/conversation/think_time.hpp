@@ -55,6 +55,7 @@ class ThinkTimeAgent final : public Agent {
   void on_dialogue(const std::vector<Turn>& dialogue, bool over, const std::string& why) override {
     inner_->on_dialogue(dialogue, over, why);
   }
+  void stop_deciding() override { inner_->stop_deciding(); }
 
  private:
   std::unique_ptr<Agent> inner_;

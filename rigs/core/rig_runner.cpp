@@ -16,6 +16,7 @@
 #include "bridge/can/virtual_can_bus.hpp"
 #include "common/runtime.hpp"
 #include "linkemu/link_emulator_node.hpp"
+#include "rigs/core/agent_outcome.hpp"
 #include "rigs/core/episode_recorder.hpp"
 #include "rigs/core/episode_writer.hpp"
 #include "rigs/core/lcm_log_node.hpp"
@@ -28,6 +29,20 @@
 namespace a3::rigs {
 namespace {
 
+// The final status: what ended the run, unless the user, a node or the endpoint ended it, or
+// the agent never acted (agent_failed: the agent, not the host, is at fault), or the real-time
+// contract broke (then the run, not the agent, is at fault). Virtual time has no contract
+// (realtime null).
+std::string final_status(const std::string& ended, const nlohmann::json& realtime,
+                         const std::vector<nlohmann::json>& turns) {
+  if (ended == "interrupted" || ended.rfind("node_failed", 0) == 0 || ended.rfind("endpoint_failed", 0) == 0) {
+    return ended;
+  }
+  if (std::string why = agent_failure_status(turns); !why.empty()) return why;
+  const std::string why = realtime_violations(realtime);
+  return why.empty() ? ended : "realtime_violated: " + why;
+}
+
 using SteadyClock = std::chrono::steady_clock;
 
 constexpr double kPostDialogueWait_s = 240.0;  // after the last turn, time left to land
@@ -37,6 +52,7 @@ constexpr double kAfterCrash_s = 2.0;
 std::string end_reason(const RecordedEpisode& r, bool dialogue_done, double mission_s, double dialogue_end_s,
                        double crash_s, double time_limit_s) {
   if (crash_s >= 0.0 && mission_s - crash_s >= kAfterCrash_s) return "crashed";
+  if (std::string why = endpoint_failure_status(r.turns); !why.empty()) return why;
   if (dialogue_done) {
     const bool landed = r.last_state.on_ground && !r.last_fc.armed;
     if (landed) return "completed";
@@ -169,6 +185,7 @@ RunResult run_virtual(const Scenario& s, const RunOptions& o, const RigConfigs& 
   } catch (const std::exception& e) {
     status = std::string("node_failed: ") + e.what();
   }
+  status = final_status(status, nullptr, n.recorder->snapshot().turns);
   RunEnd end{status, t, std::chrono::duration<double>(SteadyClock::now() - wall0).count(), n.counters(), nullptr};
   return finish(s, o, n, end, unix0, progress);
 }
@@ -214,13 +231,6 @@ std::string status_line(double mission_s, double wall_s, const RecordedEpisode& 
   return line;
 }
 
-// The final status: what ended the run, unless the real-time contract broke (then the run,
-// not the agent, is at fault) or the user or a node ended it.
-std::string final_status(const std::string& ended, const nlohmann::json& realtime) {
-  if (ended == "interrupted" || ended.rfind("node_failed", 0) == 0) return ended;
-  const std::string why = realtime_violations(realtime);
-  return why.empty() ? ended : "realtime_violated: " + why;
-}
 
 RunResult run_real(const Scenario& s, const RunOptions& o, const RigConfigs& cfg, const ProgressFn& progress,
                    const std::atomic<bool>* stop) {
@@ -232,7 +242,7 @@ RunResult run_real(const Scenario& s, const RunOptions& o, const RigConfigs& cfg
     common::LcmBus probe(lcm_url);
     probe.check_loopback();
   }
-  const bool agent_in_thread = o.agent == "llm";
+  const bool agent_in_thread = o.agent == "llm" || o.agent == "mcp";  // decide() blocks on a wall clock
   std::unique_ptr<bridge::CanBus> can_bridge, can_fc;
   std::unique_ptr<RigProcesses> children;
   std::vector<RigPart> in_process = all_parts();
@@ -299,7 +309,7 @@ RunResult run_real(const Scenario& s, const RunOptions& o, const RigConfigs& cfg
   end.wall_s = wall_s;
   end.counters = counters_from_stats(r.nodes);
   end.realtime = realtime_report(o, {mission_s, wall_s, windows.worst()}, r.nodes);
-  end.status = final_status(status, end.realtime);
+  end.status = final_status(status, end.realtime, r.turns);
   return finish(s, o, n, end, unix0, progress);
 }
 
@@ -309,6 +319,8 @@ int run_exit_status(const std::string& status) {
   if (status == "interrupted") return 3;
   if (status.rfind("node_failed", 0) == 0) return 4;
   if (status.rfind("realtime_violated", 0) == 0) return 5;
+  if (status.rfind("agent_failed", 0) == 0) return 6;
+  if (status.rfind("endpoint_failed", 0) == 0) return 7;
   return 0;
 }
 

@@ -1,0 +1,16 @@
+// The closing lines of a run (`a3rig run`, `a3rig mcp`): where the episode, LCM log and plot
+// were written, the status and timing, the real-time accounting, success, and the α³ score of
+// the episode as `a3rig score` computes it (or why the episode is not valid). `a3rig mcp`
+// prints them on stderr, since its stdout carries the MCP session.
+#pragma once
+
+#include <cstdio>
+
+#include "rigs/core/rig_runner.hpp"
+#include "rigs/core/run_options.hpp"
+
+namespace a3::rigs {
+
+void print_run_summary(std::FILE* out, const RunResult& result, const RunOptions& options);
+
+}  // namespace a3::rigs
