@@ -1,7 +1,7 @@
 // The scripted responder: from the llm agent's prompt alone (no state kept between requests) it
 // answers every turn exactly as a live scripted agent does — detours, traffic alerts, network
 // adaptation included — with token usage estimated from characters; a request without the
-// context block is a clear 400-style error.
+// context block gets a generic answer; a broken block is a clear 400-style error.
 #include <gtest/gtest.h>
 
 #include "agent/llm/llm_prompt.hpp"
@@ -111,18 +111,13 @@ TEST(ScriptedResponder, TheLatestUserMessageWithABlockIsUsedAfterACorrection) {
   EXPECT_EQ(responder.respond(request).content, first.content);
 }
 
-TEST(ScriptedResponder, RequestsWithoutAContextBlockAreA400StyleError) {
+TEST(ScriptedResponder, RequestsWithoutAContextBlockGetAGenericAnswerAndBrokenBlocksAre400Style) {
   ScriptedResponder responder;
   const nlohmann::json plain = {{"model", "scripted"},
                                 {"messages", {{{"role", "system"}, {"content", "You are helpful."}},
                                               {{"role", "user"}, {"content", "Write a UAV episode as JSON."}}}}};
-  try {
-    responder.respond(plain);
-    FAIL() << "answered a request without a context block";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("no user message of the request carries the context block"), std::string::npos)
-        << e.what();
-  }
+  // Any OpenAI client works against it (issue 13): a short text, not a refusal.
+  EXPECT_NE(responder.respond(plain).content.find("scripted responder"), std::string::npos);
   EXPECT_THROW(responder.respond(nlohmann::json::object()), std::invalid_argument);
   EXPECT_THROW(responder.respond({{"messages", "hi"}}), std::invalid_argument);
   // A block that is not a usable context names the field.
