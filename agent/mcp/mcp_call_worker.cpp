@@ -13,7 +13,7 @@ McpCallWorker::~McpCallWorker() {
 bool McpCallWorker::post(std::function<void()> job) {
   {
     std::lock_guard lock(mutex_);
-    if (stopping_) return false;
+    if (stopping_ || draining_) return false;
     jobs_.push_back(std::move(job));
   }
   wake_.notify_one();
@@ -27,6 +27,13 @@ void McpCallWorker::shutdown() {
     jobs_.clear();
   }
   wake_.notify_all();
+  idle_.notify_all();
+}
+
+void McpCallWorker::drain() {
+  std::unique_lock lock(mutex_);
+  draining_ = true;
+  idle_.wait(lock, [this] { return stopping_ || (jobs_.empty() && !busy_); });
 }
 
 void McpCallWorker::run() {
@@ -38,8 +45,14 @@ void McpCallWorker::run() {
       if (stopping_) return;
       job = std::move(jobs_.front());
       jobs_.pop_front();
+      busy_ = true;
     }
     job();
+    {
+      std::lock_guard lock(mutex_);
+      busy_ = false;
+    }
+    idle_.notify_all();
   }
 }
 

@@ -21,6 +21,8 @@ class McpCallWorker {
   bool post(std::function<void()> job);
   // Drops queued jobs and refuses new ones; the job in progress finishes. Idempotent.
   void shutdown();
+  // Refuses new jobs and waits until every queued job has run.
+  void drain();
 
  private:
   void run();
@@ -29,6 +31,9 @@ class McpCallWorker {
   std::condition_variable wake_;
   std::deque<std::function<void()>> jobs_;
   bool stopping_ = false;
+  bool draining_ = false;
+  bool busy_ = false;
+  std::condition_variable idle_;
   std::thread thread_;
 };
 

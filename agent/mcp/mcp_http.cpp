@@ -94,6 +94,11 @@ bool accepts_json(const httplib::Request& request) {
 McpHttpTransport::McpHttpTransport(McpRig& rig, McpServerOptions options, McpLog log)
     : rig_(rig), options_(std::move(options)), log_(std::move(log)), server_(std::make_unique<httplib::Server>()) {
   server_->set_tcp_nodelay(true);
+  // SO_REUSEADDR only: httplib's default SO_REUSEPORT would let a second server share the port.
+  server_->set_socket_options([](socket_t sock) {
+    int yes = 1;
+    ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
   server_->set_keep_alive_timeout(1);
   const std::string& path = options_.http_path;
   server_->Post(path, [this](const httplib::Request& q, httplib::Response& r) { on_post(q, r); });
@@ -108,7 +113,12 @@ int McpHttpTransport::start() {
                    : server_->bind_to_port(options_.http_host, options_.http_port) ? options_.http_port : -1;
   if (port <= 0)
     throw std::runtime_error("mcp http: cannot bind " + options_.http_host + ":" + std::to_string(options_.http_port));
-  listen_thread_ = std::thread([this] { server_->listen_after_bind(); });
+  listen_thread_ = std::thread([this] {
+    server_->listen_after_bind();
+    listen_ended_ = true;
+  });
+  // httplib's stop() does nothing before listening has begun: wait for it, so stop() always ends it.
+  while (!server_->is_running() && !listen_ended_) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   log_("mcp: serving Streamable HTTP on http://" + options_.http_host + ":" + std::to_string(port) + options_.http_path);
   return port;
 }

@@ -56,6 +56,7 @@ class McpHttpTransport {
   std::condition_variable done_cv_;
   bool session_over_ = false;
   std::atomic<bool> stopping_{false};
+  std::atomic<bool> listen_ended_{false};
   std::string session_id_;
   std::shared_ptr<McpProtocol> protocol_;
 };

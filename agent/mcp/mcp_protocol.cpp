@@ -88,6 +88,11 @@ void McpProtocol::shutdown() {
   worker_.shutdown();
 }
 
+void McpProtocol::finish() {
+  stopped_ = true;
+  worker_.drain();
+}
+
 std::string McpProtocol::protocol_version() const {
   std::lock_guard lock(mutex_);
   return version_;
@@ -225,7 +230,8 @@ bool McpProtocol::known_tool(const std::string& name) const {
 }
 
 json McpProtocol::on_tools_call(const json& request, const Replies& replies) {
-  const json& params = require_object_params(request, params_of(request));
+  const json all_params = params_of(request);
+  const json& params = require_object_params(request, all_params);
   const std::string name = require_string(params, "tools/call", "name");
   json arguments = params.value("arguments", json::object());
   if (arguments.is_null()) arguments = json::object();

@@ -44,6 +44,9 @@ class McpProtocol {
   std::string protocol_version() const;
   // Drops queued calls and answers nothing more. Idempotent.
   void shutdown();
+  // Answers nothing more, but lets the queued calls run and answer first (the client's input
+  // ended; its last calls still happen).
+  void finish();
 
   // True when `message` (or a batch member) is a tools/call that asks for progress: its
   // response may be preceded by notifications.

@@ -72,7 +72,8 @@ void McpStdioTransport::serve(std::istream& in, std::ostream& out) {
     if (line.find_first_not_of(" \t") == std::string::npos) continue;
     protocol.handle_text(line, send);
   }
-  protocol.shutdown();
+  if (stopping_) protocol.shutdown();
+  else protocol.finish();
   if (!stopping_) {
     log_("mcp: the client closed stdin; ending the session");
     rig_.client_closed();
