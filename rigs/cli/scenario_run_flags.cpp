@@ -1,0 +1,53 @@
+// The shared options of `a3rig run` and `a3rig mcp`.
+#include "rigs/cli/scenario_run_flags.hpp"
+
+#include <map>
+#include <stdexcept>
+
+namespace a3::rigs {
+
+void ScenarioRunFlags::apply() {
+  options.runtime = runtime == "virtual" ? Runtime::kVirtual : Runtime::kReal;
+  if (!out.empty()) options.out_dir = out;
+  if (options.processes && options.runtime == Runtime::kVirtual) {
+    throw std::invalid_argument("--processes: runs in real time only (virtual time is one process by design); drop "
+                                "--runtime virtual or --processes");
+  }
+}
+
+void add_scenario_run_flags(CLI::App& cmd, ScenarioRunFlags& f) {
+  RunOptions& o = f.options;
+  cmd.add_option("--scenario", o.scenario,
+                 "built-in scenario (survey-field, parcel-delivery, bridge-inspection, thermal-search, nfz-detour, "
+                 "traffic-conflict), a scenario JSON file, or alphabench:<path> (an initial_state of the public "
+                 "corpus, relative to ../shared/alphabench/eval_runs)");
+  cmd.add_option("--think-time", o.think_time,
+                 "latency added to every agent turn: seconds, fixed:S, uniform:A,B, normal:M,SD, lognormal:MEDIAN,SIGMA, "
+                 "exp:MEAN, or model:<name> (a model of the paper)");
+  cmd.add_option("--runtime", f.runtime, "real (default: the wall clock) or virtual (as fast as possible)")
+      ->check(CLI::IsMember({"real", "virtual"}));
+  cmd.add_option("--slice", o.slice, "start on this 6G slice instead of the scenario's (eMBB, URLLC or mMTC)")
+      ->check(CLI::IsMember({"eMBB", "URLLC", "mMTC"}));
+  cmd.add_option("--seed", o.seed, "seed of every random stream (default 42)");
+  cmd.add_option("--out", f.out, "output folder (default out/run)");
+  cmd.add_option("--rtf", o.real_time_factor, "real time: simulated seconds per wall second (default 1)")
+      ->check(CLI::PositiveNumber);
+  cmd.add_option("--sync", o.sync,
+                 "real time: lockstep (default: dynamics, bridge and flight controller advance together, paced by "
+                 "the wall clock at --rtf) or free (every node on the wall clock; for a real flight controller)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, Sync>{{"lockstep", Sync::kLockstep}, {"free", Sync::kFree}}));
+  cmd.add_option("--lcm-url", o.lcm_url,
+                 "real time: LCM URL (default $LCM_DEFAULT_URL, else a port of its own on udpm://239.255.76.67, "
+                 "ttl=0, printed at the start: give it to lcm-spy)");
+  cmd.add_option("--can", o.can,
+                 "real time: the CAN bus between bridge and flight controller: userspace (a private bus, default), "
+                 "or an interface such as vcan0 or can0 (SocketCAN)");
+  cmd.add_option("--integrator", o.integrator, "cvode (default) or ode")->check(CLI::IsMember({"cvode", "ode"}));
+  cmd.add_option("--max-turns", o.max_turns, "turn budget (default 12)")->check(CLI::Range(2, 100));
+  cmd.add_option("--min-turns", o.min_turns, "fewest turns before the dialogue may end (default 8)")->check(CLI::Range(2, 100));
+  cmd.add_flag("--no-lcm-log", [&o](int64_t) { o.write_lcm_log = false; }, "do not write the LCM log");
+  cmd.add_flag("--no-plot", [&o](int64_t) { o.write_plot = false; }, "do not draw the trajectory");
+  cmd.add_flag("-q,--quiet", o.quiet, "no progress lines");
+}
+
+}  // namespace a3::rigs
