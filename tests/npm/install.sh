@@ -34,6 +34,10 @@ if [ "$want_hash" = "$have_hash" ] && [ -d "$cache/node_modules" ]; then
   exit 0
 fi
 
+# A quick probe first: npm ci itself retries for a minute or more before giving up.
+if ! timeout 20 npm ping --fetch-retries=0 --fetch-timeout=10000 >/dev/null 2>&1; then
+  skip "npm registry not reachable ($(npm config get registry 2>/dev/null))"
+fi
 cp "$here/package.json" "$here/package-lock.json" "$cache/"
 rm -f "$cache/.a3-lock-hash"
 log="$cache/.a3-npm-ci.log"
