@@ -43,15 +43,78 @@ bool content_text(const json& content, std::string& out) {
 
 json chat_request_body(const LlmEndpoint& endpoint, const std::vector<ChatMessage>& messages,
                        bool with_response_format) {
+  SentParameters sent;
+  sent.response_format = with_response_format;
+  sent.max_tokens = true;
+  LlmEndpoint plain = endpoint;
+  plain.stream = false;
+  return chat_request_body(plain, ChatRequest{messages}, sent);
+}
+
+SentParameters parameters_to_send(const LlmEndpoint& endpoint, const ChatRequest& request,
+                                  const RefusedParameters& refused) {
+  const bool has_tools = request.tools.is_array() && !request.tools.empty();
+  SentParameters sent;
+  sent.response_format = endpoint.json_output && !has_tools && !refused.response_format;
+  sent.tool_choice = has_tools && !request.tool_choice.empty() && !refused.tool_choice;
+  sent.stream_options = endpoint.stream && !refused.stream_options;
+  sent.max_tokens = !refused.max_tokens;
+  return sent;
+}
+
+json message_json(const ChatMessage& m) {
+  json out = {{"role", m.role}, {"content", m.content}};
+  if (!m.tool_calls.empty()) {
+    if (m.content.empty()) out["content"] = nullptr;
+    json calls = json::array();
+    for (const auto& c : m.tool_calls) {
+      calls.push_back({{"id", c.id}, {"type", "function"}, {"function", {{"name", c.name}, {"arguments", c.arguments}}}});
+    }
+    out["tool_calls"] = std::move(calls);
+  }
+  if (m.role == "tool") out["tool_call_id"] = m.tool_call_id;
+  return out;
+}
+
+json chat_request_body(const LlmEndpoint& endpoint, const ChatRequest& request, const SentParameters& sent) {
   json body = json::object();
   body["model"] = endpoint.model;
   json list = json::array();
-  for (const auto& m : messages) list.push_back({{"role", m.role}, {"content", m.content}});
+  for (const auto& m : request.messages) list.push_back(message_json(m));
   body["messages"] = std::move(list);
   body["temperature"] = endpoint.temperature;
-  if (endpoint.max_tokens > 0) body["max_tokens"] = endpoint.max_tokens;
-  if (with_response_format) body["response_format"] = {{"type", "json_object"}};
+  if (endpoint.max_tokens > 0) body[sent.max_tokens ? "max_tokens" : "max_completion_tokens"] = endpoint.max_tokens;
+  if (sent.response_format) body["response_format"] = {{"type", "json_object"}};
+  if (request.tools.is_array() && !request.tools.empty()) body["tools"] = request.tools;
+  if (sent.tool_choice) body["tool_choice"] = request.tool_choice;
+  if (endpoint.stream) {
+    body["stream"] = true;
+    if (sent.stream_options) body["stream_options"] = {{"include_usage", true}};
+  }
   return body;
+}
+
+std::string read_tool_calls(const json& calls, std::vector<ToolCall>& out) {
+  out.clear();
+  if (calls.is_null()) return "";
+  if (!calls.is_array()) return "tool_calls is not an array";
+  for (std::size_t i = 0; i < calls.size(); ++i) {
+    const json& c = calls[i];
+    const std::string where = "tool_calls/" + std::to_string(i);
+    if (!c.is_object() || !c.contains("function") || !c["function"].is_object()) return where + ": no function";
+    const json& f = c["function"];
+    if (!f.contains("name") || !f["name"].is_string() || f["name"].get<std::string>().empty()) {
+      return where + ": no function.name";
+    }
+    ToolCall call;
+    call.name = f["name"].get<std::string>();
+    if (c.contains("id") && c["id"].is_string()) call.id = c["id"].get<std::string>();
+    const json args = f.value("arguments", json());
+    call.arguments = args.is_string() ? args.get<std::string>() : args.is_null() ? "" : args.dump();
+    if (call.arguments.empty()) call.arguments = "{}";  // a call without arguments (some servers)
+    out.push_back(std::move(call));
+  }
+  return "";
 }
 
 std::string body_excerpt(const std::string& body, std::size_t max_chars) {
@@ -113,9 +176,15 @@ bool parse_chat_response(const std::string& body, const std::string& url, ChatRe
   const json& choice = (*choices)[0];
   const auto message = choice.find("message");
   if (message == choice.end() || !message->is_object()) return fail("no choices[0].message");
+  if (const std::string problem = read_tool_calls(message->value("tool_calls", json()), out.tool_calls);
+      !problem.empty()) {
+    return fail("choices[0].message." + problem);
+  }
   const auto content = message->find("content");
-  if (content == message->end() || !content_text(*content, out.content)) {
-    return fail("no choices[0].message.content");
+  const bool no_content = content == message->end() || content->is_null();
+  out.content.clear();
+  if (no_content ? out.tool_calls.empty() : !content_text(*content, out.content)) {
+    return fail("no choices[0].message.content and no tool_calls");
   }
   out.finish_reason.clear();
   if (const auto fr = choice.find("finish_reason"); fr != choice.end() && fr->is_string()) {
@@ -123,18 +192,20 @@ bool parse_chat_response(const std::string& body, const std::string& url, ChatRe
   }
   out.model.clear();
   if (const auto m = doc.find("model"); m != doc.end() && m->is_string()) out.model = m->get<std::string>();
-  out.usage = LlmUsage{};
-  if (const auto usage = doc.find("usage"); usage != doc.end() && usage->is_object()) {
-    out.usage.raw = *usage;
-    out.usage.prompt_tokens = token_count(*usage, "prompt_tokens");
-    out.usage.completion_tokens = token_count(*usage, "completion_tokens");
-    out.usage.total_tokens = token_count(*usage, "total_tokens");
-    if (out.usage.total_tokens == 0) out.usage.total_tokens = out.usage.prompt_tokens + out.usage.completion_tokens;
-    if (const auto cost = usage->find("cost"); cost != usage->end() && cost->is_number()) {
-      out.usage.cost_usd = cost->get<double>();
-    }
-  }
+  out.usage = usage_from_json(doc.value("usage", json()));
   return true;
+}
+
+LlmUsage usage_from_json(const json& usage) {
+  LlmUsage out;
+  if (!usage.is_object()) return out;
+  out.raw = usage;
+  out.prompt_tokens = token_count(usage, "prompt_tokens");
+  out.completion_tokens = token_count(usage, "completion_tokens");
+  out.total_tokens = token_count(usage, "total_tokens");
+  if (out.total_tokens == 0) out.total_tokens = out.prompt_tokens + out.completion_tokens;
+  if (const auto cost = usage.find("cost"); cost != usage.end() && cost->is_number()) out.cost_usd = cost->get<double>();
+  return out;
 }
 
 void add_usage_fields(json& into, const json& other) {

@@ -12,11 +12,14 @@
 #include <cstdlib>
 #include <fstream>
 #include <mutex>
+#include <optional>
+#include <string_view>
 #include <stdexcept>
 #include <thread>
 
 #include "agent/llm/http_chat_completion.hpp"
 #include "agent/llm/http_retry.hpp"
+#include "agent/llm/sse_stream.hpp"
 
 namespace a3::agent::llm {
 namespace {
@@ -102,7 +105,8 @@ void init_curl_once() {
   std::call_once(once, [] { curl_global_init(CURL_GLOBAL_DEFAULT); });
 }
 
-// What one HTTP exchange produced.
+// What one HTTP exchange produced. A streamed answer (requested, and sent as
+// text/event-stream) is assembled as it arrives instead of kept as a body.
 struct Exchange {
   CURLcode code = CURLE_OK;
   std::string curl_error;
@@ -111,29 +115,125 @@ struct Exchange {
   std::string retry_after;
   bool body_too_large = false;
   std::size_t max_bytes = 0;
+  std::size_t bytes = 0;
+  bool stream_requested = false;
+  bool streaming = false;
+  SseLineParser sse;
+  ChatStreamAssembler assembler;
+  std::string stream_problem;
+  Clock::time_point start;
+  std::optional<double> ttft_s, ttlt_s;
 };
+
+void on_stream_event(Exchange& ex, const std::string& data) {
+  if (!ex.stream_problem.empty()) return;
+  bool token = false;
+  ex.stream_problem = ex.assembler.add(data, token);
+  if (!token) return;
+  const double t = seconds_since(ex.start);
+  if (!ex.ttft_s) ex.ttft_s = t;
+  ex.ttlt_s = t;
+}
 
 std::size_t on_body(char* data, std::size_t size, std::size_t count, void* user) {
   auto* ex = static_cast<Exchange*>(user);
   const std::size_t n = size * count;
-  if (ex->body.size() + n > ex->max_bytes) {
+  if (ex->bytes + n > ex->max_bytes) {
     ex->body_too_large = true;
     return 0;  // makes curl stop with CURLE_WRITE_ERROR
   }
-  ex->body.append(data, n);
-  return n;
+  ex->bytes += n;
+  if (!ex->streaming) {
+    ex->body.append(data, n);
+    return n;
+  }
+  ex->sse.feed(std::string_view(data, n), [ex](const std::string& event) { on_stream_event(*ex, event); });
+  return ex->stream_problem.empty() ? n : 0;
 }
 
 std::size_t on_header(char* data, std::size_t size, std::size_t count, void* user) {
   auto* ex = static_cast<Exchange*>(user);
   const std::size_t n = size * count;
   const std::string line(data, n);
-  if (starts_with(line, "HTTP/")) ex->retry_after.clear();  // a new response (after 100 Continue, redirects)
+  if (starts_with(line, "HTTP/")) {  // a new response (after 100 Continue, redirects)
+    ex->retry_after.clear();
+    ex->streaming = false;
+  }
   const auto colon = line.find(':');
-  if (colon != std::string::npos && lower(line.substr(0, colon)) == "retry-after") {
-    ex->retry_after = trim(line.substr(colon + 1));
+  if (colon == std::string::npos) return n;
+  const std::string name = lower(line.substr(0, colon));
+  if (name == "retry-after") ex->retry_after = trim(line.substr(colon + 1));
+  if (name == "content-type") {
+    ex->streaming = ex->stream_requested && starts_with(lower(trim(line.substr(colon + 1))), "text/event-stream");
   }
   return n;
+}
+
+curl_slist* request_headers(const std::string& key, bool stream) {
+  curl_slist* headers = nullptr;
+  headers = curl_slist_append(headers, "Content-Type: application/json");
+  headers = curl_slist_append(headers, stream ? "Accept: text/event-stream, application/json" : "Accept: application/json");
+  headers = curl_slist_append(headers, "Expect:");
+  if (!key.empty()) headers = curl_slist_append(headers, ("Authorization: Bearer " + key).c_str());
+  return headers;
+}
+
+// One POST of `body` to `url` on the kept-alive handle.
+void perform(CURL* curl, const std::string& url, const std::string& body, curl_slist* headers, const LlmEndpoint& e,
+             Exchange& ex) {
+  char curl_error[CURL_ERROR_SIZE] = {0};
+  curl_easy_reset(curl);  // options only: the connection cache stays (keep-alive)
+  curl_easy_setopt(curl, CURLOPT_URL, url.c_str());
+  curl_easy_setopt(curl, CURLOPT_POST, 1L);
+  curl_easy_setopt(curl, CURLOPT_POSTFIELDS, body.data());
+  curl_easy_setopt(curl, CURLOPT_POSTFIELDSIZE_LARGE, static_cast<curl_off_t>(body.size()));
+  curl_easy_setopt(curl, CURLOPT_HTTPHEADER, headers);
+  curl_easy_setopt(curl, CURLOPT_USERAGENT, "a3rig-llm-client");
+  curl_easy_setopt(curl, CURLOPT_ACCEPT_ENCODING, "");
+  curl_easy_setopt(curl, CURLOPT_NOSIGNAL, 1L);
+  curl_easy_setopt(curl, CURLOPT_TCP_KEEPALIVE, 1L);
+  curl_easy_setopt(curl, CURLOPT_CONNECTTIMEOUT_MS, static_cast<long>(e.connect_timeout_s * 1000.0));
+  curl_easy_setopt(curl, CURLOPT_TIMEOUT_MS, static_cast<long>(e.total_timeout_s * 1000.0));
+  curl_easy_setopt(curl, CURLOPT_MAXFILESIZE_LARGE, static_cast<curl_off_t>(e.max_response_bytes));
+  curl_easy_setopt(curl, CURLOPT_WRITEFUNCTION, on_body);
+  curl_easy_setopt(curl, CURLOPT_WRITEDATA, &ex);
+  curl_easy_setopt(curl, CURLOPT_HEADERFUNCTION, on_header);
+  curl_easy_setopt(curl, CURLOPT_HEADERDATA, &ex);
+  curl_easy_setopt(curl, CURLOPT_ERRORBUFFER, curl_error);
+  ex.start = Clock::now();
+  {
+    const SigpipeBlock no_sigpipe;
+    ex.code = curl_easy_perform(curl);
+  }
+  ex.curl_error = curl_error;
+  curl_easy_getinfo(curl, CURLINFO_RESPONSE_CODE, &ex.http_status);
+  curl_easy_setopt(curl, CURLOPT_ERRORBUFFER, nullptr);
+}
+
+// A 2xx answer read into `out`; "" or what is wrong with it.
+std::string read_answer(Exchange& ex, const std::string& url, ChatResponse& out) {
+  if (!ex.streaming) {
+    std::string error;
+    return parse_chat_response(ex.body, url, out, error) ? "" : error;
+  }
+  const std::string problem = ex.assembler.finish(out);
+  return problem.empty() ? "" : "response from " + url + ": " + problem;
+}
+
+// Everything the model wrote, with the key taken out (a model never sees it; should it appear).
+void redact_answer(ChatResponse& r, const std::string& key) {
+  r.content = redact(std::move(r.content), key);
+  for (auto& c : r.tool_calls) c.arguments = redact(std::move(c.arguments), key);
+}
+
+std::string call_error(const std::string& url, const std::vector<LlmAttempt>& attempts, const std::string& final_error) {
+  if (attempts.size() <= 1) return "POST " + url + ": " + final_error;
+  std::string error = "POST " + url + " failed after " + std::to_string(attempts.size()) + " attempts:";
+  for (std::size_t i = 0; i < attempts.size(); ++i) {
+    error += " #" + std::to_string(i + 1) + " " + (attempts[i].error.empty() ? std::string("ok") : attempts[i].error) + ";";
+  }
+  error.pop_back();
+  return error;
 }
 
 std::string describe_curl_error(const Exchange& ex, const LlmEndpoint& e) {
@@ -271,102 +371,82 @@ LlmClient::~LlmClient() {
 
 void LlmClient::set_sleep_for_tests(std::function<void(double)> sleep) { sleep_ = std::move(sleep); }
 
-LlmCallResult LlmClient::chat(const std::vector<ChatMessage>& messages) {
+LlmCallResult LlmClient::chat(const std::vector<ChatMessage>& messages) { return send(ChatRequest{messages}); }
+
+bool is_endpoint_failure(const LlmCallResult& result) {
+  if (result.ok) return false;
+  const int s = result.http_status;
+  return s == 0 || s == 401 || s == 403 || s == 404 || s == 408 || s == 429 || s >= 500;
+}
+
+LlmCallResult LlmClient::send(const ChatRequest& request) {
   LlmCallResult result;
   const std::string url = endpoint_.base_url + "/chat/completions";
   const std::string& key = endpoint_.api_key;
-  CURL* curl = static_cast<CURL*>(curl_);
   const auto start = Clock::now();
-
-  curl_slist* headers = nullptr;
-  headers = curl_slist_append(headers, "Content-Type: application/json");
-  headers = curl_slist_append(headers, "Accept: application/json");
-  headers = curl_slist_append(headers, "Expect:");
-  if (!key.empty()) headers = curl_slist_append(headers, ("Authorization: Bearer " + key).c_str());
-
+  curl_slist* headers = request_headers(key, endpoint_.stream);
   int retries_made = 0;
-  bool format_retry_used = false;
   std::string final_error;
   for (;;) {
-    const bool with_format = endpoint_.json_output && !response_format_rejected_;
+    const SentParameters sent = parameters_to_send(endpoint_, request, refused_);
     std::string request_body;
     try {
-      request_body = chat_request_body(endpoint_, messages, with_format).dump();
+      request_body = chat_request_body(endpoint_, request, sent).dump();
     } catch (const nlohmann::json::exception& e) {  // e.g. a message that is not UTF-8
       final_error = std::string("cannot encode the request: ") + e.what();
       break;
     }
-
     Exchange ex;
     ex.max_bytes = endpoint_.max_response_bytes;
-    char curl_error[CURL_ERROR_SIZE] = {0};
-    curl_easy_reset(curl);  // options only: the connection cache stays (keep-alive)
-    curl_easy_setopt(curl, CURLOPT_URL, url.c_str());
-    curl_easy_setopt(curl, CURLOPT_POST, 1L);
-    curl_easy_setopt(curl, CURLOPT_POSTFIELDS, request_body.data());
-    curl_easy_setopt(curl, CURLOPT_POSTFIELDSIZE_LARGE, static_cast<curl_off_t>(request_body.size()));
-    curl_easy_setopt(curl, CURLOPT_HTTPHEADER, headers);
-    curl_easy_setopt(curl, CURLOPT_USERAGENT, "a3rig-llm-client");
-    curl_easy_setopt(curl, CURLOPT_ACCEPT_ENCODING, "");
-    curl_easy_setopt(curl, CURLOPT_NOSIGNAL, 1L);
-    curl_easy_setopt(curl, CURLOPT_TCP_KEEPALIVE, 1L);
-    curl_easy_setopt(curl, CURLOPT_CONNECTTIMEOUT_MS, static_cast<long>(endpoint_.connect_timeout_s * 1000.0));
-    curl_easy_setopt(curl, CURLOPT_TIMEOUT_MS, static_cast<long>(endpoint_.total_timeout_s * 1000.0));
-    curl_easy_setopt(curl, CURLOPT_MAXFILESIZE_LARGE, static_cast<curl_off_t>(endpoint_.max_response_bytes));
-    curl_easy_setopt(curl, CURLOPT_WRITEFUNCTION, on_body);
-    curl_easy_setopt(curl, CURLOPT_WRITEDATA, &ex);
-    curl_easy_setopt(curl, CURLOPT_HEADERFUNCTION, on_header);
-    curl_easy_setopt(curl, CURLOPT_HEADERDATA, &ex);
-    curl_easy_setopt(curl, CURLOPT_ERRORBUFFER, curl_error);
-
-    const auto attempt_start = Clock::now();
-    {
-      const SigpipeBlock no_sigpipe;
-      ex.code = curl_easy_perform(curl);
-    }
-    ex.curl_error = curl_error;
-    curl_easy_getinfo(curl, CURLINFO_RESPONSE_CODE, &ex.http_status);
-    curl_easy_setopt(curl, CURLOPT_ERRORBUFFER, nullptr);
+    ex.stream_requested = endpoint_.stream;
+    perform(static_cast<CURL*>(curl_), url, request_body, headers, endpoint_, ex);
     // Before anything is cut into an excerpt (which could cut a key in two) or returned.
     ex.body = redact(std::move(ex.body), key);
+    ex.stream_problem = redact(std::move(ex.stream_problem), key);
 
     LlmAttempt attempt;
-    attempt.duration_s = seconds_since(attempt_start);
-    attempt.http_status = ex.code == CURLE_OK ? static_cast<int>(ex.http_status) : 0;
+    attempt.duration_s = seconds_since(ex.start);
+    attempt.http_status = ex.code == CURLE_OK || !ex.stream_problem.empty() ? static_cast<int>(ex.http_status) : 0;
+    attempt.ttft_s = ex.ttft_s;
+    attempt.ttlt_s = ex.ttlt_s;
     result.http_attempts += 1;
-    if (ex.code == CURLE_OK) result.http_status = static_cast<int>(ex.http_status);
+    if (attempt.http_status != 0) result.http_status = attempt.http_status;
 
     bool retryable = false;
     if (ex.body_too_large || ex.code == CURLE_FILESIZE_EXCEEDED) {
       attempt.error = "response from " + url + " is larger than " + size_text(endpoint_.max_response_bytes) +
                       " (max_response_bytes); not read";
+    } else if (!ex.stream_problem.empty()) {
+      attempt.error = "response from " + url + ": " + ex.stream_problem;
     } else if (ex.code != CURLE_OK) {
-      attempt.error = describe_curl_error(ex, endpoint_);
+      attempt.error = describe_curl_error(ex, endpoint_) + (ex.streaming ? " (in the middle of the stream)" : "");
       retryable = is_retryable_curl_error(ex.code);
     } else if (ex.http_status >= 200 && ex.http_status < 300) {
       ChatResponse parsed;
-      std::string parse_error;
-      if (parse_chat_response(ex.body, url, parsed, parse_error)) {
+      attempt.error = read_answer(ex, url, parsed);
+      if (attempt.error.empty()) {
+        redact_answer(parsed, key);
         result.ok = true;
         result.content = std::move(parsed.content);
+        result.tool_calls = std::move(parsed.tool_calls);
         result.finish_reason = std::move(parsed.finish_reason);
         result.model = std::move(parsed.model);
         result.usage = std::move(parsed.usage);
-      } else {
-        attempt.error = parse_error;
+        result.streamed = ex.streaming;
+        result.ttft_s = ex.ttft_s;
+        result.ttlt_s = ex.ttlt_s;
+      } else if (ex.streaming) {
+        attempt.http_status = 0;  // a cut stream is a network failure, not an answer
+        result.http_status = 0;
+        retryable = true;
       }
     } else {
-      const std::string text = error_text_from_body(ex.body);
-      attempt.error = "HTTP " + std::to_string(ex.http_status) + ": " + text;
-      const bool format_rejected = with_format && (ex.http_status == 400 || ex.http_status == 422) &&
-                                   lower(ex.body).find("response_format") != std::string::npos;
-      if (format_rejected && !format_retry_used) {
-        // The provider does not take response_format: ask again without it, now and from now on.
-        response_format_rejected_ = true;
-        format_retry_used = true;
-        attempt.error += " (retrying without response_format)";
+      attempt.error = "HTTP " + std::to_string(ex.http_status) + ": " + error_text_from_body(ex.body);
+      const std::string adapted = adapt_to_refusal(static_cast<int>(ex.http_status), ex.body, sent, refused_);
+      if (!adapted.empty()) {
+        // The provider does not take a parameter: ask again without it, now and from now on.
+        attempt.error = redact(attempt.error + " (" + adapted + " and retrying)", key);
         result.attempts.push_back(attempt);
-        result.attempts.back().error = redact(result.attempts.back().error, key);
         continue;
       }
       retryable = is_retryable_http_status(static_cast<int>(ex.http_status));
@@ -387,22 +467,8 @@ LlmCallResult LlmClient::chat(const std::vector<ChatMessage>& messages) {
     if (attempt.backoff_s > 0.0) sleep_(attempt.backoff_s);
   }
   curl_slist_free_all(headers);
-
   result.wall_time_s = seconds_since(start);
-  if (!result.ok) {
-    std::string error;
-    if (result.attempts.size() <= 1) {
-      error = "POST " + url + ": " + final_error;
-    } else {
-      error = "POST " + url + " failed after " + std::to_string(result.attempts.size()) + " attempts:";
-      for (std::size_t i = 0; i < result.attempts.size(); ++i) {
-        error += " #" + std::to_string(i + 1) + " " +
-                 (result.attempts[i].error.empty() ? std::string("ok") : result.attempts[i].error) + ";";
-      }
-      error.pop_back();
-    }
-    result.error = redact(error, key);
-  }
+  if (!result.ok) result.error = redact(call_error(url, result.attempts, final_error), key);
   return result;
 }
 

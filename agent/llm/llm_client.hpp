@@ -1,7 +1,13 @@
 // An OpenAI-compatible chat-completions client over libcurl (HTTPS or HTTP): one call is one
 // POST {base_url}/chat/completions. Retries with exponential backoff on HTTP 429/5xx and
 // network errors, honouring Retry-After; connect and total timeouts; token usage (and cost,
-// where the provider reports it) and wall time per call. The API key is sent only in the
+// where the provider reports it) and wall time per call. Requests may carry OpenAI `tools` and
+// `tool_choice`; answers may be tool calls (content null). With LlmEndpoint::stream the answer
+// comes as server-sent events (stream: true, stream_options.include_usage), assembled as they
+// arrive, with the time to the first and to the last token. A parameter the provider refuses
+// with a 400/422 naming it (response_format, tool_choice, stream_options dropped; max_tokens
+// sent as max_completion_tokens) is adjusted once and remembered for the client's life
+// (request_fallbacks.hpp). The API key is sent only in the
 // Authorization header: it never appears in errors, logs, or anything this client returns.
 #pragma once
 
@@ -12,6 +18,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "agent/llm/request_fallbacks.hpp"
 
 namespace a3::agent::llm {
 
@@ -29,6 +37,7 @@ struct LlmEndpoint {
   double backoff_max_s = 30.0;
   std::string provider;            // "openai", "openrouter", ... (for output layout); derived from base_url if empty
   std::size_t max_response_bytes = 16u << 20;  // a longer answer is an error
+  bool stream = false;             // stream: true (server-sent events), time to first/last token
 };
 
 // Reads A3_LLM_BASE_URL, A3_LLM_MODEL, A3_LLM_PROVIDER (optional), and the key from
@@ -43,9 +52,26 @@ LlmEndpoint endpoint_from_environment(const std::string& base_url_flag, const st
 // URL's host name.
 std::string provider_from_base_url(const std::string& base_url);
 
+// One function call of an assistant message (OpenAI `tool_calls[i]`).
+struct ToolCall {
+  std::string id;         // as the model gave it (e.g. "call_abc"); a tool message answers it by id
+  std::string name;       // function.name
+  std::string arguments;  // function.arguments: the JSON text as the model wrote it
+};
+
 struct ChatMessage {
-  std::string role;  // system | user | assistant
-  std::string content;
+  std::string role;  // system | user | assistant | tool
+  std::string content;  // an assistant message with tool_calls may have none ("": sent as null)
+  std::vector<ToolCall> tool_calls = {};  // assistant: the calls it made
+  std::string tool_call_id = {};          // tool: the call this message is the result of
+};
+
+// One chat-completions request: the messages and, for tool calling, the OpenAI `tools` array
+// (null: none) and `tool_choice` ("": not sent; "auto", "required", "none").
+struct ChatRequest {
+  std::vector<ChatMessage> messages;
+  nlohmann::json tools = nullptr;
+  std::string tool_choice = {};
 };
 
 struct LlmUsage {
@@ -64,11 +90,14 @@ struct LlmAttempt {
   std::string error;          // empty when the attempt got a usable answer; key redacted
   double duration_s = 0.0;    // the request itself
   double backoff_s = 0.0;     // waited after it before the next attempt
+  std::optional<double> ttft_s;  // streamed: request start to the first token
+  std::optional<double> ttlt_s;  // streamed: request start to the last token
 };
 
 struct LlmCallResult {
   bool ok = false;
-  std::string content;        // choices[0].message.content
+  std::string content;        // choices[0].message.content ("" when null)
+  std::vector<ToolCall> tool_calls;  // choices[0].message.tool_calls, in order
   std::string finish_reason;  // choices[0].finish_reason
   std::string model;          // as the server reports it
   LlmUsage usage;
@@ -77,7 +106,15 @@ struct LlmCallResult {
   int http_attempts = 0;      // 1 + retries made
   std::vector<LlmAttempt> attempts;
   std::string error;          // when !ok: what went wrong, key redacted
+  bool streamed = false;      // the answer came as server-sent events
+  std::optional<double> ttft_s;  // streamed: of the usable attempt, request start to first token
+  std::optional<double> ttlt_s;  // streamed: ... to the last token
 };
+
+// Whether a failed call is the endpoint's fault rather than the request's: no HTTP answer
+// (unreachable, timeout, cut), 401, 403, 404, 408, 429 or 5xx (after the client's retries).
+// `a3rig generate` stops on it; `a3rig run` ends endpoint_failed on it (rigs/core/llm_run.hpp).
+bool is_endpoint_failure(const LlmCallResult& result);
 
 class LlmClient {
  public:
@@ -91,10 +128,14 @@ class LlmClient {
   // Never throws for HTTP, network or response-format problems: they come back as !ok.
   // One client is one connection: use one per thread.
   LlmCallResult chat(const std::vector<ChatMessage>& messages);
+  // The same with tools, tool_choice (chat(messages) is send({messages})).
+  LlmCallResult send(const ChatRequest& request);
 
   const LlmEndpoint& endpoint() const { return endpoint_; }
   // True once the server rejected response_format: later calls go without it.
-  bool response_format_dropped() const { return response_format_rejected_; }
+  bool response_format_dropped() const { return refused_.response_format; }
+  // What the server refused so far (kept for later calls).
+  const RefusedParameters& refused_parameters() const { return refused_; }
   // Replaces sleeping between retries (tests); receives the backoff in seconds.
   void set_sleep_for_tests(std::function<void(double)> sleep);
 
@@ -102,7 +143,7 @@ class LlmClient {
   LlmEndpoint endpoint_;
   std::function<void(double)> sleep_;
   void* curl_ = nullptr;  // CURL*, reused across calls (keep-alive)
-  bool response_format_rejected_ = false;
+  RefusedParameters refused_;
 };
 
 // Replaces every occurrence of `secret` (if non-empty) in `text` with "[redacted]".

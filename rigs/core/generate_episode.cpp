@@ -49,11 +49,7 @@ ordered_json episode_meta(int64_t seed, double gen_time_s, int attempts, const a
 
 }  // namespace
 
-bool is_endpoint_failure(const agent::llm::LlmCallResult& result) {
-  if (result.ok) return false;
-  const int s = result.http_status;
-  return s == 0 || s == 401 || s == 403 || s == 404 || s == 408 || s == 429 || s >= 500;
-}
+bool is_endpoint_failure(const agent::llm::LlmCallResult& result) { return agent::llm::is_endpoint_failure(result); }
 
 ordered_json episode_object_from_reply(const std::string& content, std::string& problem) {
   ordered_json whole = ordered_json::parse(content, nullptr, false);
@@ -79,7 +75,7 @@ GeneratedEpisode generate_episode(const GenerateChat& chat, eval::EpisodeReader&
     out.usage += call.usage;
     previous.problems.clear();
     if (!call.ok) {
-      if (is_endpoint_failure(call)) {
+      if (agent::llm::is_endpoint_failure(call)) {
         throw GenerateEndpointError(scenario_id(scenario.number) + " seed " + std::to_string(seed) + ": " +
                                     call.error);
       }

@@ -242,12 +242,13 @@ TEST(LlmClient, NoChoicesIsAClearError) {
   EXPECT_NE(r.error.find("no choices[0]"), std::string::npos) << r.error;
 }
 
-TEST(LlmClient, NullContentIsAClearError) {
+TEST(LlmClient, NullContentWithoutToolCallsIsAClearError) {
   ScriptedOpenAiServer server(ScriptedOpenAiServer::sequence({{200, completion_body(nullptr)}}));
   TestClient c(endpoint_for(server.base_url()));
   const LlmCallResult r = c.chat();
   EXPECT_FALSE(r.ok);
-  EXPECT_NE(r.error.find("no choices[0].message.content (body starts: {"), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("no choices[0].message.content and no tool_calls (body starts: {"), std::string::npos)
+      << r.error;
 }
 
 TEST(LlmClient, AnErrorObjectWithStatus200IsAnError) {
