@@ -115,6 +115,28 @@ TEST_F(McpHttpTest, BadBodiesAreRefusedClearly) {
   EXPECT_EQ(form->status, 415);
 }
 
+TEST_F(McpHttpTest, A20250326SessionWithoutTheVersionHeaderAcceptsABatch) {
+  json initialize = kInitialize;
+  initialize["params"]["protocolVersion"] = "2025-03-26";
+  auto opened = post(initialize, {});
+  ASSERT_TRUE(opened);
+  session_id = opened->get_header_value("Mcp-Session-Id");
+  const json batch = json::array({ping(1), json::parse(R"({"jsonrpc":"2.0","id":2,"method":"tools/call","params":{"name":"read_telemetry"}})")});
+  auto result = post(batch, {{"Mcp-Session-Id", session_id}});
+  ASSERT_TRUE(result);
+  EXPECT_EQ(result->status, 200);
+  const json replies = json::parse(result->body);
+  ASSERT_TRUE(replies.is_array()) << result->body;
+  EXPECT_EQ(replies.size(), 2u);
+}
+
+TEST_F(McpHttpTest, AnAcceptThatAllowsNeitherJsonNorEventsIs406) {
+  open();
+  auto result = client->Post("/mcp", {{"Mcp-Session-Id", session_id}, {"Accept", "text/html"}}, ping(1).dump(), "application/json");
+  ASSERT_TRUE(result);
+  EXPECT_EQ(result->status, 406);
+}
+
 TEST_F(McpHttpTest, GetIs405) {
   open();
   auto result = client->Get("/mcp", session());
