@@ -60,7 +60,10 @@ ResponderChoice corpus_choice() {
 }
 
 ResponderChoice scripted_choice() {
-  return {"the rig's scripted policy answers the llm agent's turns (closed-loop `a3rig run --agent llm` offline)",
+  return {"the rig's scripted policy answers the llm agent's turns (closed-loop `a3rig run --agent llm` offline): "
+          "as the JSON text protocol, or with `tools` as tool_calls (one per action, then report_turn); any other "
+          "client gets a generic answer (a call of the chosen tool with arguments made from its schema, or a short "
+          "text)",
           [](CLI::Option_group&) { return ResponderFactory([] { return std::make_unique<ms::ScriptedResponder>(); }); }};
 }
 
@@ -176,10 +179,15 @@ A3_REGISTER_COMMAND("50-serve-model", [](CLI::App& app) {
   }
   CLI::App* cmd = app.add_subcommand(
       "serve-model",
-      "Serve an OpenAI-compatible chat-completions API (POST /v1/chat/completions, GET /v1/models) on this host, "
-      "answered by a local responder after a chosen latency: run LLM agents and `a3rig generate` without a "
-      "network, or test an LLM client against a slow, failing or rate-limiting model. Point a client at "
-      "http://HOST:PORT/v1 (A3_LLM_BASE_URL). Stops on Ctrl-C or SIGTERM. Exit status: 0 stopped, 1 cannot "
+      "Serve an OpenAI-compatible chat-completions API (POST /v1/chat/completions, GET /v1/models, GET "
+      "/v1/models/{id}) on this host, answered by a local responder after a chosen latency: run LLM agents and "
+      "`a3rig generate` without a network, or test an LLM client against a slow, failing or rate-limiting model. "
+      "Honours tools / tool_choice (none, auto, required, a named function), parallel_tool_calls, response_format "
+      "(text, json_object, json_schema), n (1-8) and stream: true (server-sent chat.completion.chunk events, usage "
+      "with stream_options.include_usage; the first chunk after half the latency, the rest spread over the other "
+      "half). What it cannot honour (logprobs, audio, other tool types, ...) is a 400 naming the field; a body "
+      "that is not JSON is a 415. Errors are OpenAI's {\"error\": {message, type, param, code}}. Point a client "
+      "at http://HOST:PORT/v1 (A3_LLM_BASE_URL). Stops on Ctrl-C or SIGTERM. Exit status: 0 stopped, 1 cannot "
       "listen, 2 bad usage.");
   ms::ModelServerOptions& o = args->server;
   std::vector<std::string> name_list;
@@ -212,7 +220,9 @@ A3_REGISTER_COMMAND("50-serve-model", [](CLI::App& app) {
   cmd->add_option("--require-key-env", o.require_key_env,
                   "require Authorization: Bearer <the value of this environment variable> (401 otherwise); the "
                   "key itself is never given on the command line nor logged");
-  cmd->add_option("--model-id", o.model_ids, "model ids GET /v1/models lists (repeatable; default the responder's name)");
+  cmd->add_option("--model-id", o.model_ids,
+                  "model ids GET /v1/models lists and GET /v1/models/{id} knows (repeatable; default the responder's "
+                  "name)");
   cmd->add_option("--threads", o.threads, "worker threads: connections served at once (default 16)")
       ->check(CLI::Range(1, 1024));
   cmd->add_option("--ready-file", args->ready_file,

@@ -106,4 +106,18 @@ TEST(ServeModelCommand, BadUsageExitsWith2AndSaysWhy) {
   fs::remove_all(dir);
 }
 
+TEST(ServeModelCommand, HelpNamesTheOpenAiFeaturesItHonours) {
+  if (!fs::exists(a3rig())) GTEST_SKIP() << a3rig() << " is not built (build the a3rig target)";
+  const fs::path dir = temp_dir();
+  const pid_t pid = spawn({a3rig(), "serve-model", "--help"}, dir / "out.txt", dir / "err.txt");
+  ASSERT_GT(pid, 0);
+  EXPECT_EQ(wait_exit(pid, 30.0), 0);
+  const std::string help = read_file(dir / "out.txt");
+  for (const char* feature : {"GET /v1/models/{id}", "tool_choice", "response_format", "stream: true", "n (1-8)",
+                              "a 400 naming the field", "415", "include_usage", "half the latency"}) {
+    EXPECT_NE(help.find(feature), std::string::npos) << feature;
+  }
+  fs::remove_all(dir);
+}
+
 }  // namespace
