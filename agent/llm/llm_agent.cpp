@@ -1,9 +1,10 @@
-// The llm agent's turn: prompt, call, parse, retry.
+// The llm agent's turn: prompt, call, read, retry.
 #include "agent/llm/llm_agent.hpp"
 
 #include <stdexcept>
 
 #include "agent/llm/llm_reply.hpp"
+#include "agent/llm/native_reply.hpp"
 #include "common/clock.hpp"
 
 namespace a3::agent::llm {
@@ -20,6 +21,26 @@ double seconds_since(int64_t start_ns) {
   return static_cast<double>(common::WallClock::monotonic_now_ns() - start_ns) * 1e-9;
 }
 
+// What every attempt records, whatever its outcome.
+nlohmann::json attempt_entry(int attempt, const LlmCallResult& call, ToolMode mode) {
+  nlohmann::json entry = {{"attempt", attempt},
+                          {"tool_mode", to_string(mode)},
+                          {"wall_time_s", call.wall_time_s},
+                          {"http_status", call.http_status},
+                          {"http_attempts", call.http_attempts},
+                          {"usage", call.usage.to_json()}};
+  if (call.streamed) entry["streamed"] = true;
+  if (call.ttft_s) entry["ttft_s"] = *call.ttft_s;
+  if (call.ttlt_s) entry["ttlt_s"] = *call.ttlt_s;
+  return entry;
+}
+
+std::string joined(const std::vector<std::string>& problems) {
+  std::string out;
+  for (const auto& p : problems) out += (out.empty() ? "" : "; ") + p;
+  return out;
+}
+
 }  // namespace
 
 LlmAgent::LlmAgent(std::unique_ptr<LlmClient> client, const ToolCatalog& tools, LlmAgentOptions options)
@@ -27,7 +48,7 @@ LlmAgent::LlmAgent(std::unique_ptr<LlmClient> client, const ToolCatalog& tools, 
   if (!client_) throw std::invalid_argument("LlmAgent: no client");
   secret_ = client_->endpoint().api_key;
   LlmClient* c = client_.get();
-  chat_ = [c](const std::vector<ChatMessage>& messages) { return c->chat(messages); };
+  chat_ = [c](const ChatRequest& request) { return c->send(request); };
   if (options_.max_attempts < 1) throw std::invalid_argument("LlmAgent: max_attempts must be >= 1");
 }
 
@@ -35,6 +56,43 @@ LlmAgent::LlmAgent(ChatFunction chat, std::string secret, const ToolCatalog& too
     : chat_(std::move(chat)), secret_(std::move(secret)), tools_(tools), options_(options) {
   if (!chat_) throw std::invalid_argument("LlmAgent: no chat function");
   if (options_.max_attempts < 1) throw std::invalid_argument("LlmAgent: max_attempts must be >= 1");
+}
+
+ChatRequest LlmAgent::request(const AgentContext& c, int attempt, const FailedAttempt* failure) const {
+  if (options_.mode == ToolMode::kNative) return native_request(c, tools_, calls_, attempt, failure, options_.dialogue);
+  return ChatRequest{build_turn_messages(c, tools_, attempt, failure, options_.dialogue)};
+}
+
+LlmCallResult LlmAgent::call(const ChatRequest& request, bool& threw) {
+  threw = false;
+  try {
+    return chat_(request);
+  } catch (const std::exception& e) {
+    threw = true;
+    LlmCallResult failed;
+    failed.error = std::string("the call failed: ") + e.what();
+    return failed;
+  }
+}
+
+LlmAgent::Reading LlmAgent::read(const LlmCallResult& call, int turn_number) const {
+  Reading r;
+  if (options_.mode == ToolMode::kNative) {
+    NativeReply reply = read_native_reply(call, tools_, turn_number);
+    r = {reply.intent, reply.text, std::move(reply.actions), std::move(reply.calls), std::move(reply.problems),
+         native_reply_text(call)};
+  } else {
+    ParsedReply reply = parse_reply(call.content, tools_);
+    r = {reply.intent, reply.text, std::move(reply.actions), {}, std::move(reply.problems), call.content};
+  }
+  // A model never sees the key; should a reply carry it anyway, it is not used or recorded.
+  if (!secret_.empty() && r.reply.find(secret_) != std::string::npos) {
+    r.problems.push_back("reply: repeats a credential; not used");
+  }
+  if (!r.problems.empty() && call.finish_reason == "length") {
+    r.problems.push_back("reply: cut off at the completion token limit (max_tokens); keep the reply short");
+  }
+  return r;
 }
 
 AgentDecision LlmAgent::decide(const AgentContext& context) {
@@ -48,57 +106,39 @@ AgentDecision LlmAgent::decide(const AgentContext& context) {
   int attempt = 0;
   while (!done && attempt < options_.max_attempts) {
     ++attempt;
-    nlohmann::json entry = {{"attempt", attempt}};
-    LlmCallResult call;
-    try {
-      call = chat_(build_turn_messages(context, tools_, attempt, attempt > 1 ? &failure : nullptr, options_.dialogue));
-    } catch (const std::exception& e) {
-      call = LlmCallResult{};
-      call.error = std::string("the call failed: ") + e.what();
-    }
-    usage += call.usage;
-    entry["wall_time_s"] = call.wall_time_s;
-    entry["http_status"] = call.http_status;
-    entry["http_attempts"] = call.http_attempts;
-    entry["usage"] = call.usage.to_json();
-    if (!call.model.empty()) entry["model"] = scrub(call.model);
-    if (!call.ok) {
-      const std::string error = scrub(call.error.empty() ? "the call failed (no reason given)" : call.error);
+    bool threw = false;
+    const LlmCallResult result = call(request(context, attempt, attempt > 1 ? &failure : nullptr), threw);
+    usage += result.usage;
+    nlohmann::json entry = attempt_entry(attempt, result, options_.mode);
+    if (!result.model.empty()) entry["model"] = scrub(result.model);
+    if (!result.ok) {
+      const std::string error = scrub(result.error.empty() ? "the call failed (no reason given)" : result.error);
       entry["outcome"] = "call_failed";
+      entry["endpoint_failure"] = !threw && is_endpoint_failure(result);
       entry["problems"] = {error};
       failure = {"", {error}};
+    } else if (Reading r = read(result, context.turn_number); r.problems.empty()) {
+      entry["outcome"] = "ok";
+      d.intent = scrub(r.intent);
+      d.text = scrub(r.text);
+      d.actions = std::move(r.actions);
+      if (options_.mode == ToolMode::kNative) calls_[context.turn_number] = std::move(r.calls);
+      done = true;
     } else {
-      ParsedReply reply = parse_reply(call.content, tools_);
-      // A model never sees the key; should a reply carry it anyway, it is not used or recorded.
-      if (!secret_.empty() && call.content.find(secret_) != std::string::npos) {
-        reply.problems.push_back("reply: repeats a credential; not used");
-      }
-      if (reply.ok()) {
-        entry["outcome"] = "ok";
-        d.intent = reply.intent;
-        d.text = reply.text;
-        d.actions = std::move(reply.actions);
-        done = true;
-      } else {
-        if (call.finish_reason == "length") {
-          reply.problems.push_back("reply: cut off at the completion token limit (max_tokens); keep the reply short");
-        }
-        std::vector<std::string> problems;
-        for (const auto& p : reply.problems) problems.push_back(scrub(p));
-        entry["outcome"] = "invalid_reply";
-        entry["problems"] = problems;
-        entry["reply"] = scrub(utf8_prefix(call.content, options_.recorded_reply_chars));
-        failure = {scrub(call.content), problems};
-      }
+      std::vector<std::string> problems;
+      for (const auto& p : r.problems) problems.push_back(scrub(p));
+      entry["outcome"] = "invalid_reply";
+      entry["problems"] = problems;
+      entry["reply"] = scrub(utf8_prefix(r.reply, options_.recorded_reply_chars));
+      failure = {scrub(r.reply), problems};
     }
     d.attempt_log.push_back(std::move(entry));
   }
   d.attempts = attempt;
   d.usage = usage.to_json();
   if (!done) {
-    std::string last;
-    for (const auto& p : failure.problems) last += (last.empty() ? "" : "; ") + p;
-    d.error = "no usable reply after " + std::to_string(attempt) + " attempt" + (attempt == 1 ? "" : "s") + ": " + last;
+    d.error = "no usable reply after " + std::to_string(attempt) + " attempt" + (attempt == 1 ? "" : "s") + ": " +
+              joined(failure.problems);
     d.intent.clear();
     d.text.clear();
     d.actions = nlohmann::json::array();

@@ -127,6 +127,16 @@ std::string telemetry_line(const nlohmann::json& t) {
 
 }  // namespace
 
+ToolMode parse_tool_mode(const std::string& text) {
+  if (text == "json") return ToolMode::kJson;
+  if (text == "native") return ToolMode::kNative;
+  throw std::invalid_argument("--llm-tools '" + text + "': must be native (tool calls) or json (a JSON object in the text)");
+}
+
+const char* to_string(ToolMode mode) { return mode == ToolMode::kNative ? "native" : "json"; }
+
+std::string role_and_safety_text() { return std::string(kRole) + "\n" + kSafetyRules; }
+
 std::string reply_format_text() {
   return std::string(
              "Reply format: one JSON object,\n"
@@ -148,7 +158,7 @@ std::string system_prompt(const ToolCatalog& tools, int attempt) {
   return out;
 }
 
-std::string turn_prompt(const AgentContext& c, const DialogueLimits& limits) {
+std::string turn_prompt(const AgentContext& c, const DialogueLimits& limits, ToolMode mode) {
   std::string out;
   char text[300];
   const int agent_turns_left = (c.max_turns - c.turn_number) / 2 + 1;
@@ -167,8 +177,10 @@ std::string turn_prompt(const AgentContext& c, const DialogueLimits& limits) {
       "Everything you know is in the JSON below: the mission (objectives, home, cruise altitude and speed), the "
       "airspace (geofence, alt_bounds, no-fly zones, traffic), the initial_state, the network n_t, the latest "
       "telemetry, and the dialogue so far (each turn with its speaker, intent, text, actions and one observation "
-      "per action, in order).\n"
-      "Decide your next turn and reply with its JSON object only.\n\n";
+      "per action, in order).\n";
+  out += (mode == ToolMode::kNative
+           ? "Decide your next turn: call the functions of its actions, and report_turn once with its intent and text.\n\n"
+           : "Decide your next turn and reply with its JSON object only.\n\n");
   out += "```json\n" + context_to_json(c, limits).dump() + "\n```\n";
   return out;
 }

@@ -24,13 +24,24 @@ struct FailedAttempt {
   std::vector<std::string> problems;  // as the reply parser names them, or the call's error
 };
 
+// How the agent acts: a JSON object in the reply's text (the paper's protocol), or native tool
+// calls (OpenAI `tools`, native_prompt.hpp).
+enum class ToolMode { kJson, kNative };
+// "json" | "native"; throws std::invalid_argument naming the value otherwise.
+ToolMode parse_tool_mode(const std::string& text);
+const char* to_string(ToolMode mode);
+
+// The agent's role and the safety rules (the start of both modes' system message).
+std::string role_and_safety_text();
 // The system message. attempt 3 adds the strict rules (only the JSON object, only these names,
 // only the agent's own turn).
 std::string system_prompt(const ToolCatalog& tools, int attempt = 1);
 // The reply format, as the system message and the corrections state it.
 std::string reply_format_text();
-// The user message of a turn (ends with the ```json context block).
-std::string turn_prompt(const AgentContext& context, const DialogueLimits& limits = {});
+// The user message of a turn (ends with the ```json context block). Only the sentence that says
+// how to answer differs between the modes.
+std::string turn_prompt(const AgentContext& context, const DialogueLimits& limits = {},
+                        ToolMode mode = ToolMode::kJson);
 // The correction sent after a failed attempt, before attempt `attempt` (2 or 3).
 std::string correction_prompt(const ToolCatalog& tools, int attempt, const FailedAttempt& failure);
 

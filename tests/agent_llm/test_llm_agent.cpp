@@ -180,7 +180,7 @@ TEST(LlmAgentChatFunction, ExceptionsFromTheCallAreFailedAttempts) {
   const auto played = test::play_scripted("survey-field", 0);
   int calls = 0;
   LlmAgent a(
-      [&calls](const std::vector<ChatMessage>&) -> LlmCallResult {
+      [&calls](const ChatRequest&) -> LlmCallResult {
         ++calls;
         throw std::runtime_error("boom");
       },
