@@ -239,12 +239,14 @@ void McpHttpTransport::on_delete(const httplib::Request& request, httplib::Respo
 
 void McpHttpTransport::end_session() {
   std::shared_ptr<McpProtocol> protocol;
+  std::string session_id;
   {
     std::lock_guard lock(mutex_);
     protocol = protocol_;
+    session_id = session_id_;
     session_over_ = true;
   }
-  log_("mcp: the client deleted session " + session_id_ + "; ending the session");
+  log_("mcp: the client deleted session " + session_id + "; ending the session");
   if (protocol) protocol->shutdown();
   rig_.client_closed();
   done_cv_.notify_all();

@@ -223,10 +223,13 @@ json McpProtocol::on_initialize(const json& params) {
               {"instructions", rig_.instructions()}};
 }
 
-bool McpProtocol::known_tool(const std::string& name) const {
-  for (const auto& tool : rig_.tools())
-    if (tool.value("name", std::string()) == name) return true;
-  return false;
+bool McpProtocol::known_tool(const std::string& name) {
+  std::lock_guard lock(mutex_);
+  if (!tool_names_) {
+    tool_names_.emplace();
+    for (const auto& tool : rig_.tools()) tool_names_->insert(tool.value("name", std::string()));
+  }
+  return tool_names_->count(name) > 0;
 }
 
 json McpProtocol::on_tools_call(const json& request, const Replies& replies) {

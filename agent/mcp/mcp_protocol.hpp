@@ -14,6 +14,8 @@
 #include <atomic>
 #include <functional>
 #include <mutex>
+#include <optional>
+#include <set>
 #include <string>
 
 namespace a3::agent::mcp {
@@ -70,12 +72,13 @@ class McpProtocol {
   nlohmann::json resources_list() const;
   void run_call(const nlohmann::json& id, const std::string& name, const nlohmann::json& arguments,
                 const nlohmann::json& progress_token, const Replies& replies);
-  bool known_tool(const std::string& name) const;
+  bool known_tool(const std::string& name);
 
   McpRig& rig_;
   McpLog log_;
   mutable std::mutex mutex_;
   std::string version_;
+  std::optional<std::set<std::string>> tool_names_;  // tools/list does not change (listChanged false)
   std::atomic<bool> stopped_{false};
   McpCallWorker worker_;
 };

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <iostream>
 #include <mutex>
 #include <stdexcept>
@@ -21,7 +22,10 @@ McpStdioTransport::~McpStdioTransport() {
 }
 
 void McpStdioTransport::stop() {
-  if (stopping_.exchange(true)) return;
+  if (!stopping_.exchange(true)) wake();
+}
+
+void McpStdioTransport::wake() {
   const char byte = 1;
   [[maybe_unused]] ssize_t written = ::write(wake_pipe_[1], &byte, 1);
 }
@@ -38,7 +42,7 @@ bool McpStdioTransport::read_line_fd0(std::string& line) {
       if (errno == EINTR) continue;
       return false;
     }
-    if (stopping_) return false;
+    if (ending()) return false;
     char chunk[65536];
     const ssize_t got = ::read(0, chunk, sizeof chunk);
     if (got < 0 && errno == EINTR) continue;
@@ -52,9 +56,9 @@ bool McpStdioTransport::read_line_fd0(std::string& line) {
 }
 
 bool McpStdioTransport::read_line(std::istream& in, std::string& line) {
-  if (stopping_) return false;
+  if (ending()) return false;
   if (&in == &std::cin) return read_line_fd0(line);
-  return static_cast<bool>(std::getline(in, line)) && !stopping_;
+  return static_cast<bool>(std::getline(in, line)) && !ending();
 }
 
 void McpStdioTransport::serve(std::istream& in, std::ostream& out) {
@@ -64,7 +68,12 @@ void McpStdioTransport::serve(std::istream& in, std::ostream& out) {
     std::lock_guard lock(write_mutex);
     out << text << '\n';
     out.flush();
+    if (!out && !output_lost_.exchange(true)) {
+      log_("mcp: cannot write to the client (output closed); ending the session");
+      wake();
+    }
   };
+  const auto previous_sigpipe = std::signal(SIGPIPE, SIG_IGN);
   McpProtocol protocol(rig_, log_);
   std::string line;
   while (read_line(in, line)) {
@@ -72,12 +81,13 @@ void McpStdioTransport::serve(std::istream& in, std::ostream& out) {
     if (line.find_first_not_of(" \t") == std::string::npos) continue;
     protocol.handle_text(line, send);
   }
-  if (stopping_) protocol.shutdown();
-  else protocol.finish();
+  if (ending()) protocol.shutdown();
+  else protocol.finish();  // the client's last calls still happen
   if (!stopping_) {
-    log_("mcp: the client closed stdin; ending the session");
+    if (!output_lost_) log_("mcp: the client closed stdin; ending the session");
     rig_.client_closed();
   }
+  std::signal(SIGPIPE, previous_sigpipe);
 }
 
 }  // namespace a3::agent::mcp

@@ -66,6 +66,21 @@ TEST(McpStdio, DiagnosticsGoToTheLogNotToTheOutput) {
   EXPECT_FALSE(log.empty());
 }
 
+TEST(McpStdio, OutputThatCannotBeWrittenEndsTheSessionAsEofDoes) {
+  FakeMcpRig rig;
+  std::istringstream in(std::string(kInitialize) + "\n" + R"({"jsonrpc":"2.0","id":1,"method":"ping"})" "\n");
+  std::ostringstream out;
+  out.setstate(std::ios::badbit);  // as std::cout after the client's end of the pipe closed
+  std::vector<std::string> log;
+  McpServerOptions options;
+  options.log = [&log](const std::string& line) { log.push_back(line); };
+  McpServer server(rig, options);
+  server.serve_stdio(in, out);
+  EXPECT_TRUE(rig.closed);
+  ASSERT_EQ(log.size(), 1u);
+  EXPECT_NE(log[0].find("cannot write to the client"), std::string::npos);
+}
+
 // Replaces fd 0 with a pipe for the test's lifetime, so std::cin is a stream the test controls.
 class StdinPipe {
  public:
