@@ -60,7 +60,9 @@ struct EpisodeThread {
         };
         const RunResult r = run_mcp_episode(s, o, agent, print, &stop);
         print_run_summary(stderr, r, o);
-        to_stderr("a3rig mcp: the episode is written; calls now answer with its status until the client leaves");
+        if (!agent.client_gone()) {
+          to_stderr("a3rig mcp: the episode is written; calls now answer with its status until the client leaves");
+        }
         status = r.status;
       } catch (...) {
         failure = std::current_exception();
