@@ -53,6 +53,14 @@ void set_error(httplib::Response& res, const ApiError& error, double retry_after
   res.set_content(openai_error_body(error).dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
 }
 
+// Counts the chat requests being handled while it lives.
+struct InFlight {
+  std::atomic<int>& n;
+  int now;
+  explicit InFlight(std::atomic<int>& c) : n(c), now(++c) {}
+  ~InFlight() { --n; }
+};
+
 int64_t usage_count(const json& usage, const char* key) {
   const auto it = usage.find(key);
   if (it == usage.end() || !it->is_number()) return -1;
@@ -352,76 +360,74 @@ void ModelServer::send_stream(httplib::Response& res, std::vector<json> chunks, 
   });
 }
 
-void ModelServer::handle_chat(const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader) {
-  const auto t0 = SteadyClock::now();
+bool ModelServer::admitted(const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader,
+                           int in_flight, json& request, uint64_t& index) {
   const std::string route = "POST /v1/chat/completions";
-  struct InFlight {
-    std::atomic<int>& n;
-    int now;
-    explicit InFlight(std::atomic<int>& c) : n(c), now(++c) {}
-    ~InFlight() { --n; }
-  } in_flight(in_flight_);
-  if (options_.max_concurrency > 0 && in_flight.now > options_.max_concurrency && authorized(req)) {
+  if (options_.max_concurrency > 0 && in_flight > options_.max_concurrency && authorized(req)) {
     res.set_header("Connection", "close");  // the body stays unread
     send_error(res, {429, "server busy: more than " + std::to_string(options_.max_concurrency) +
                               " requests at once (--max-concurrency)", std::nullopt, std::nullopt},
                options_.retry_after_s, route, &ModelServerStats::refused_busy);
-    return;
+    return false;
   }
-  json request;
   if (auto e = admit_chat(req, reader, request)) {
     if (e->status == 415) res.set_header("Connection", "close");  // the body stays unread
     send_error(res, *e, 0.0, route, e->status == 401 ? &ModelServerStats::unauthorized : &ModelServerStats::bad_requests);
-    return;
+    return false;
   }
-  uint64_t index = 0;
   if (auto e = injected_failure(index)) {
     send_error(res, *e, options_.retry_after_s, route, &ModelServerStats::injected_failures);
-    return;
+    return false;
   }
-  const std::string model = request["model"].get<std::string>();
-  const ChatOptions options = chat_options(request);
-  json usage;
-  std::vector<ResponderReply> choices;
+  return true;
+}
+
+bool ModelServer::answered(const json& request, const ChatOptions& options, uint64_t index, httplib::Response& res,
+                           std::vector<ResponderReply>& choices, json& usage) {
+  const std::string what = "POST /v1/chat/completions model=" + request["model"].get<std::string>();
   try {
     choices = answer(request, options, index, usage);
+    return true;
   } catch (const BadRequest& e) {
-    send_error(res, {400, e.what(), e.param(), "invalid_value"}, 0.0, route + " model=" + model,
-               &ModelServerStats::bad_requests);
-    return;
+    send_error(res, {400, e.what(), e.param(), "invalid_value"}, 0.0, what, &ModelServerStats::bad_requests);
   } catch (const std::invalid_argument& e) {
-    send_error(res, {400, e.what(), std::nullopt, std::nullopt}, 0.0, route + " model=" + model,
-               &ModelServerStats::bad_requests);
-    return;
+    send_error(res, {400, e.what(), std::nullopt, std::nullopt}, 0.0, what, &ModelServerStats::bad_requests);
   } catch (const std::exception& e) {
-    send_error(res, {500, responder_name_ + " responder failed: " + e.what(), std::nullopt, std::nullopt}, 0.0,
-               route + " model=" + model, &ModelServerStats::responder_errors);
-    return;
+    send_error(res, {500, responder_name_ + " responder failed: " + e.what(), std::nullopt, std::nullopt}, 0.0, what,
+               &ModelServerStats::responder_errors);
   }
+  return false;
+}
 
+void ModelServer::deliver(const ChatAnswer& a, httplib::Response& res) {
+  const std::string model = a.request["model"].get<std::string>();
   double latency_s;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    latency_s = latency_.latency_s(choices.front(), latency_rng_);
+    latency_s = latency_.latency_s(a.choices.front(), latency_rng_);
   }
-  const double elapsed_s = std::chrono::duration<double>(SteadyClock::now() - t0).count();
-  const double first_s = options.stream ? latency_s * kFirstChunkShare : latency_s;
+  const double elapsed_s = std::chrono::duration<double>(SteadyClock::now() - a.started).count();
+  const double first_s = a.options.stream ? latency_s * kFirstChunkShare : latency_s;
   if (!wait_or_stop(first_s - elapsed_s)) {
-    send_error(res, {503, "server shutting down", std::nullopt, std::nullopt}, 0.0, route + " model=" + model);
+    send_error(res, {503, "server shutting down", std::nullopt, std::nullopt}, 0.0,
+               "POST /v1/chat/completions model=" + model);
     return;
   }
-
-  const CompletionHeader header{"chatcmpl-a3rig-" + std::to_string(index), static_cast<int64_t>(std::time(nullptr)), model};
-  if (options.stream) {
-    std::vector<json> chunks = completion_chunks(header, choices, options.include_usage ? usage : json());
+  const CompletionHeader header{"chatcmpl-a3rig-" + std::to_string(a.index), static_cast<int64_t>(std::time(nullptr)), model};
+  if (a.options.stream) {
+    std::vector<json> chunks = completion_chunks(header, a.choices, a.options.include_usage ? a.usage : json());
     const double later_chunks = static_cast<double>(std::max<std::size_t>(1, chunks.size() - 1));
     send_stream(res, std::move(chunks), latency_s * (1.0 - kFirstChunkShare) / later_chunks);
   } else {
     res.status = 200;
-    res.set_content(completion_json(header, choices, usage).dump(-1, ' ', false, json::error_handler_t::replace),
+    res.set_content(completion_json(header, a.choices, a.usage).dump(-1, ' ', false, json::error_handler_t::replace),
                     "application/json");
   }
-  const int64_t prompt_tokens = usage["prompt_tokens"], completion_tokens = usage["completion_tokens"];
+  record_answer(a, latency_s);
+}
+
+void ModelServer::record_answer(const ChatAnswer& a, double latency_s) {
+  const int64_t prompt_tokens = a.usage["prompt_tokens"], completion_tokens = a.usage["completion_tokens"];
   {
     std::lock_guard<std::mutex> lock(mutex_);
     ++stats_.requests;
@@ -430,10 +436,22 @@ void ModelServer::handle_chat(const httplib::Request& req, httplib::Response& re
     stats_.prompt_tokens += prompt_tokens;
     stats_.completion_tokens += completion_tokens;
   }
-  const double took_s = std::chrono::duration<double>(SteadyClock::now() - t0).count();
-  log(route + " 200 model=" + model + (options.stream ? " stream" : "") + (options.n > 1 ? " n=" + std::to_string(options.n) : "") +
-      " prompt_chars=" + std::to_string(prompt_characters(request)) + fmt(" latency=%.3fs", latency_s) + " tokens=" +
-      std::to_string(prompt_tokens) + "+" + std::to_string(completion_tokens) + fmt(" took=%.3fs", took_s));
+  const double took_s = std::chrono::duration<double>(SteadyClock::now() - a.started).count();
+  log("POST /v1/chat/completions 200 model=" + a.request["model"].get<std::string>() +
+      (a.options.stream ? " stream" : "") + (a.options.n > 1 ? " n=" + std::to_string(a.options.n) : "") +
+      " prompt_chars=" + std::to_string(prompt_characters(a.request)) + fmt(" latency=%.3fs", latency_s) +
+      " tokens=" + std::to_string(prompt_tokens) + "+" + std::to_string(completion_tokens) +
+      fmt(" took=%.3fs", took_s));
+}
+
+void ModelServer::handle_chat(const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader) {
+  ChatAnswer a;
+  a.started = SteadyClock::now();
+  const InFlight in_flight(in_flight_);
+  if (!admitted(req, res, reader, in_flight.now, a.request, a.index)) return;
+  a.options = chat_options(a.request);
+  if (!answered(a.request, a.options, a.index, res, a.choices, a.usage)) return;
+  deliver(a, res);
 }
 
 }  // namespace a3::agent::model_server

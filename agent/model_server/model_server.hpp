@@ -15,6 +15,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
@@ -117,6 +118,24 @@ class ModelServer {
                                      nlohmann::json& request);
   // Numbers the chat request (`index`) and draws whether it fails on purpose.
   std::optional<ApiError> injected_failure(uint64_t& index);
+  // A chat request on its way: what was asked, the replies, when it came.
+  struct ChatAnswer {
+    nlohmann::json request;
+    ChatOptions options;
+    uint64_t index = 0;
+    std::vector<ResponderReply> choices;
+    nlohmann::json usage;
+    std::chrono::steady_clock::time_point started;
+  };
+  // Busy, refused (admit_chat) or failed on purpose: answered with the error, false.
+  bool admitted(const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader,
+                int in_flight, nlohmann::json& request, uint64_t& index);
+  // answer(), its exceptions answered as 400 / 500: false.
+  bool answered(const nlohmann::json& request, const ChatOptions& options, uint64_t index, httplib::Response& res,
+                std::vector<ResponderReply>& choices, nlohmann::json& usage);
+  // Waits out the latency (the first share of it for a stream) and sends the answer.
+  void deliver(const ChatAnswer& answer, httplib::Response& res);
+  void record_answer(const ChatAnswer& answer, double latency_s);
   // One reply per choice, shaped to the options, with the usage of them all in `usage`.
   std::vector<ResponderReply> answer(const nlohmann::json& request, const ChatOptions& options, uint64_t index,
                                      nlohmann::json& usage);

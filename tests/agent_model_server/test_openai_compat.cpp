@@ -164,6 +164,18 @@ TEST(OpenAiCompat, BodiesThatAreNotJsonGet415SayingTheBodyMustBeJson) {
   EXPECT_EQ(s.server->stats().bad_requests, 4u);
 }
 
+TEST(OpenAiCompat, ABodyOverTheLimitIs413NamingTheLimit) {
+  ms::ModelServerOptions o;
+  o.max_request_bytes = 1000;
+  Served s(o);
+  const auto r = s.post(chat({{"messages", {{{"role", "user"}, {"content", std::string(5000, 'x')}}}}}));
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 413);
+  const json error = json::parse(r->body)["error"];
+  EXPECT_NE(error["message"].get<std::string>().find("larger than 1000 bytes"), std::string::npos) << r->body;
+  EXPECT_EQ(error["code"], "request_too_large");
+}
+
 TEST(OpenAiCompat, RetrievesAModelByIdAndRefusesUnknownIds) {
   ms::ModelServerOptions o;
   o.model_ids = {"scripted", "openai/gpt-4.1-mini"};
