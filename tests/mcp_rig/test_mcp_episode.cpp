@@ -45,8 +45,9 @@ struct Flight {
 
 // Runs `scenario` with the client's `fly` on a thread; the run on this one.
 template <typename Fly>
-Flight fly_episode(const std::string& scenario, const std::string& tag, Fly fly) {
+Flight fly_episode(const std::string& scenario, const std::string& tag, Fly fly, const std::string& think_time = "0") {
   RunOptions o = test::virtual_run(scenario, "mcp-" + tag);
+  o.think_time = think_time;
   const Scenario s = load_scenario(o.scenario, o.shared_dir);
   std::atomic<bool> stop{false};
   auto agent = make_mcp_agent(s, o, &stop);
@@ -136,6 +137,22 @@ TEST(McpEpisode, AClientThatLeavesMidDialogueLeavesAnInterruptedEpisode) {
   const McpCallResult late = rig->call_tool("read_telemetry", json::object(), {});
   EXPECT_TRUE(late.is_error);
   EXPECT_NE(late.text.find("interrupted"), std::string::npos) << late.text;
+}
+
+TEST(McpEpisode, AThinkTimeModelIsChargedInsteadOfTheClientsWallTime) {
+  const Flight f = fly_episode(
+      "parcel-delivery", "think",
+      [](Client& c) {
+        c.call("read_telemetry", json::object());
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));  // not charged: the model is
+        c.call("report_turn", turn_call("preflight_check", "Ready."));
+        c.rig.client_closed();
+      },
+      "fixed:2");
+  EXPECT_EQ(f.result.status, "interrupted") << f.transcript;
+  const json& rig1 = f.result.episode["_rig"]["turns"][0];
+  EXPECT_EQ(rig1.value("steps", 0), 2);
+  EXPECT_DOUBLE_EQ(rig1.value("think_time_s", 0.0), 4.0) << rig1.dump();  // 2 s for each of the 2 steps
 }
 
 }  // namespace
