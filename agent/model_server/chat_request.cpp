@@ -103,6 +103,16 @@ Problem unsupported_problem(const json& request) {
     return bad("top_logprobs", "'top_logprobs' is not supported by this server (it has no token probabilities)",
                "unsupported_parameter");
   }
+  for (const char* legacy : {"functions", "function_call"}) {
+    if (present(request, legacy)) {
+      return bad(legacy, std::string("'") + legacy + "' (the deprecated function calling) is not supported: use 'tools' "
+                 "and 'tool_choice'", "unsupported_parameter");
+    }
+  }
+  if (present(request, "web_search_options")) {
+    return bad("web_search_options", "'web_search_options' is not supported by this server (no web search)",
+               "unsupported_parameter");
+  }
   if (present(request, "audio")) {
     return bad("audio", "'audio' output is not supported by this server (text only)", "unsupported_parameter");
   }

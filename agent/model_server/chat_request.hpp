@@ -4,8 +4,10 @@
 // and stream_options.include_usage, response_format (text, json_object, json_schema), tools
 // (type "function") and tool_choice ("none", "auto", "required", {"type":"function",
 // "function":{"name"}}), parallel_tool_calls. Refused with 400 rather than ignored: logprobs /
-// top_logprobs, audio output (`audio`, `modalities` with "audio"), any other tool type or
-// response_format type, values of the wrong type.
+// top_logprobs, audio output (`audio`, `modalities` with "audio"), the deprecated `functions` /
+// `function_call`, `web_search_options`, any other tool type or response_format type, values of
+// the wrong type. Other fields (seed, stop, user, penalties, metadata, ...) do not change a
+// reply of these responders and are accepted.
 #pragma once
 
 #include <nlohmann/json.hpp>
