@@ -17,6 +17,7 @@ namespace {
 
 using nlohmann::json;
 constexpr auto kStopPoll = std::chrono::milliseconds(100);
+constexpr size_t kMaxBodyBytes = 8u << 20;  // a JSON-RPC message to a vehicle is a few kB
 
 bool is_final(const json& message) { return message.is_array() || jsonrpc::is_response(message); }
 
@@ -100,6 +101,7 @@ McpHttpTransport::McpHttpTransport(McpRig& rig, McpServerOptions options, McpLog
     ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
   });
   server_->set_keep_alive_timeout(1);
+  server_->set_payload_max_length(kMaxBodyBytes);
   const std::string& path = options_.http_path;
   server_->Post(path, [this](const httplib::Request& q, httplib::Response& r) { on_post(q, r); });
   server_->Delete(path, [this](const httplib::Request& q, httplib::Response& r) { on_delete(q, r); });

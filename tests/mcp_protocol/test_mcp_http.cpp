@@ -137,6 +137,14 @@ TEST_F(McpHttpTest, AnAcceptThatAllowsNeitherJsonNorEventsIs406) {
   EXPECT_EQ(result->status, 406);
 }
 
+TEST_F(McpHttpTest, ABodyOver8MiBIs413) {
+  open();
+  const std::string huge = R"({"jsonrpc":"2.0","id":1,"method":"ping","params":{"pad":")" + std::string(9u << 20, 'x') + "\"}}";
+  auto result = client->Post("/mcp", session(), huge, "application/json");
+  ASSERT_TRUE(result);
+  EXPECT_EQ(result->status, 413);
+}
+
 TEST_F(McpHttpTest, GetIs405) {
   open();
   auto result = client->Get("/mcp", session());
