@@ -90,6 +90,27 @@ bool accepts_json(const httplib::Request& request) {
          accept.find("application/*") != std::string::npos;
 }
 
+// CORS for a page on a local origin (a browser-based client such as the MCP Inspector in its
+// direct mode): it may call and read the session header. Foreign origins get nothing (and 403).
+void allow_local_origin(const httplib::Request& request, httplib::Response& response) {
+  if (!request.has_header("Origin") || !local_origin(request.get_header_value("Origin"))) return;
+  response.set_header("Access-Control-Allow-Origin", request.get_header_value("Origin"));
+  response.set_header("Access-Control-Expose-Headers", "Mcp-Session-Id");
+  response.set_header("Vary", "Origin");
+}
+
+void answer_preflight(const httplib::Request& request, httplib::Response& response) {
+  if (request.has_header("Origin") && !local_origin(request.get_header_value("Origin"))) {
+    response.status = 403;
+    return;
+  }
+  response.status = 204;
+  response.set_header("Access-Control-Allow-Methods", "POST, GET, DELETE, OPTIONS");
+  response.set_header("Access-Control-Allow-Headers",
+                      "Content-Type, Accept, Mcp-Session-Id, MCP-Protocol-Version, Last-Event-ID, Authorization");
+  response.set_header("Access-Control-Max-Age", "600");
+}
+
 }  // namespace
 
 McpHttpTransport::McpHttpTransport(McpRig& rig, McpServerOptions options, McpLog log)
@@ -106,6 +127,8 @@ McpHttpTransport::McpHttpTransport(McpRig& rig, McpServerOptions options, McpLog
   server_->Post(path, [this](const httplib::Request& q, httplib::Response& r) { on_post(q, r); });
   server_->Delete(path, [this](const httplib::Request& q, httplib::Response& r) { on_delete(q, r); });
   server_->Get(path, [this](const httplib::Request& q, httplib::Response& r) { on_get(q, r); });
+  server_->Options(path, answer_preflight);
+  server_->set_post_routing_handler(allow_local_origin);
 }
 
 McpHttpTransport::~McpHttpTransport() { stop(); }

@@ -4,7 +4,8 @@
 // tools/call asked for progress. One session per rig: Mcp-Session-Id is issued with the
 // initialize response and required afterwards (400 without, 404 unknown). The MCP-Protocol-Version
 // header must be a supported revision when present (400 otherwise); an Origin that is not local
-// is refused (403). Binds 127.0.0.1 unless told otherwise.
+// is refused (403); a local one gets CORS headers (and OPTIONS preflights are answered), so a
+// browser page on localhost can be a client. Binds 127.0.0.1 unless told otherwise.
 #pragma once
 
 #include "agent/mcp/mcp_protocol.hpp"

@@ -145,6 +145,21 @@ TEST_F(McpHttpTest, ABodyOver8MiBIs413) {
   EXPECT_EQ(result->status, 413);
 }
 
+TEST_F(McpHttpTest, ALocalPageGetsCorsAndItsPreflightIsAnswered) {
+  auto preflight = client->Options("/mcp", {{"Origin", "http://localhost:6274"}, {"Access-Control-Request-Method", "POST"}});
+  ASSERT_TRUE(preflight);
+  EXPECT_EQ(preflight->status, 204);
+  EXPECT_NE(preflight->get_header_value("Access-Control-Allow-Headers").find("Mcp-Session-Id"), std::string::npos);
+  EXPECT_EQ(preflight->get_header_value("Access-Control-Allow-Origin"), "http://localhost:6274");
+  auto opened = post(kInitialize, {{"Origin", "http://localhost:6274"}});
+  ASSERT_TRUE(opened);
+  EXPECT_EQ(opened->get_header_value("Access-Control-Expose-Headers"), "Mcp-Session-Id");
+  auto foreign = client->Options("/mcp", {{"Origin", "https://evil.example"}});
+  ASSERT_TRUE(foreign);
+  EXPECT_EQ(foreign->status, 403);
+  EXPECT_FALSE(foreign->has_header("Access-Control-Allow-Origin"));
+}
+
 TEST_F(McpHttpTest, GetIs405) {
   open();
   auto result = client->Get("/mcp", session());
