@@ -39,6 +39,7 @@ struct GenerateArgs {
   double timeout_s = 600.0;
   int retries = 4;
   bool retry_failed = false;
+  bool stream = false;
   bool quiet = false;
 };
 
@@ -89,6 +90,7 @@ int run_generate_command(const GenerateArgs& args) {
     endpoint.json_output = true;
     endpoint.total_timeout_s = args.timeout_s;
     endpoint.max_retries = args.retries;
+    endpoint.stream = args.stream;
     (void)agent::llm::LlmClient(endpoint);  // checks the endpoint, fills the provider
     if (endpoint.provider.empty()) endpoint.provider = agent::llm::provider_from_base_url(endpoint.base_url);
   } catch (const std::invalid_argument& e) {
@@ -214,6 +216,7 @@ A3_REGISTER_COMMAND("45-generate", [](CLI::App& app) {
                   "used up the run stops (exit 1) rather than write failure stubs for a broken endpoint")
       ->check(CLI::Range(0, 100));
   cmd->add_flag("--retry-failed", args->retry_failed, "generate again where a failure stub was written");
+  cmd->add_flag("--llm-stream", args->stream, "stream the answers (stream: true, server-sent events)");
   cmd->add_flag("-q,--quiet", args->quiet, "no progress lines");
   cmd->callback([args] { command_exit_status() = run_generate_command(*args); });
 });

@@ -15,6 +15,7 @@
 #include "rigs/cli/command_registry.hpp"
 #include "rigs/cli/signal_stop.hpp"
 #include "rigs/core/node_configs.hpp"
+#include "rigs/core/llm_run.hpp"
 #include "rigs/core/realtime_report.hpp"
 #include "rigs/core/rig_runner.hpp"
 #include "rigs/core/shared_dir.hpp"
@@ -47,6 +48,15 @@ int run(RunArgs& args) {
   auto print = [&](const std::string& line) {
     if (!o.quiet) std::fprintf(stderr, "%s\n", line.c_str());
   };
+  if (o.agent == "llm" && !o.agent_factory) {
+    try {
+      check_llm_endpoint(llm_endpoint(o));
+    } catch (const EndpointUnreachable& e) {
+      std::fprintf(stderr, "a3rig run: %s\na3rig run: nothing flew, no episode written (status endpoint_failed)\n",
+                   e.what());
+      return run_exit_status("endpoint_failed");
+    }
+  }
   print("a3rig run: scenario " + scenario.name + " (" + scenario.source + "), agent " + o.agent + ", think time " +
         o.think_time + ", " + (o.runtime == Runtime::kVirtual ? "virtual time" : "real time") + ", seed " +
         std::to_string(o.seed) + ", output " + o.out_dir.string());
@@ -113,7 +123,12 @@ A3_REGISTER_COMMAND("10-run", [](CLI::App& app) {
       "episode is written (episode.json in the α³-Bench format, an LCM log, a trajectory plot) and scored. Exit "
       "status: 0 the episode was written, 2 bad usage or input, 3 interrupted (episode written), 4 a node failed "
       "or froze (episode written), 5 the real-time contract was broken (status realtime_violated: the host could "
-      "not keep the requested pace; episode written with its accounting in _rig.realtime).\n"
+      "not keep the requested pace; episode written with its accounting in _rig.realtime), 6 the agent never "
+      "produced a valid action (status agent_failed: no agent turn carried an action; episode written with each "
+      "turn's error), 7 the LLM endpoint failed (status endpoint_failed: --agent llm checks it with one short call "
+      "before take-off and exits 7 at once, writing nothing, when it does not answer; during the run, 2 agent turns "
+      "in a row whose calls failed at the HTTP/network level, after the client's retries, end the run at once, "
+      "episode written).\n"
       "Real time: by default the vehicle's nodes run in lockstep (--sync lockstep): simulated time never passes a "
       "flight-controller step that has not been computed, so a loaded host slows simulated time down instead of "
       "breaking the physics; --sync free runs every node on the wall clock (for a real flight controller on a real "
@@ -143,6 +158,19 @@ A3_REGISTER_COMMAND("10-run", [](CLI::App& app) {
                   "--agent llm: seconds one HTTP attempt may take (default 180); in real time the world flies on "
                   "meanwhile")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--llm-tools", o.llm_tools,
+                  "--agent llm: native (default: every MCP tool and A2A task is an OpenAI function, the model's "
+                  "tool_calls are the turn's actions and its report_turn call the turn's intent and text; without "
+                  "report_turn the intent is the first call's function name and the text the message's content) or "
+                  "json (the α³-Bench paper's protocol: a JSON object {intent, text, actions} in the reply's text)")
+      ->check(CLI::IsMember({"native", "json"}));
+  cmd->add_option("--llm-retries", o.llm_retries,
+                  "--agent llm: HTTP retries of one call on 429/5xx and network errors, with backoff (default 4); "
+                  "each of a turn's up to 3 attempts makes them")
+      ->check(CLI::Range(0, 100));
+  cmd->add_flag("--llm-stream", o.llm_stream,
+                "--agent llm: stream the answers (stream: true, server-sent events); each attempt's time to the first "
+                "and to the last token goes into the turn's _rig.attempt_log (ttft_s, ttlt_s)");
   cmd->add_option("--think-time", o.think_time,
                   "latency added to every agent turn: seconds, fixed:S, uniform:A,B, normal:M,SD, lognormal:MEDIAN,SIGMA, "
                   "exp:MEAN, or model:<name> (a model of the paper)");

@@ -1,7 +1,10 @@
-// The llm agent's endpoint for a run.
+// The llm agent's endpoint for a run, its agent, and the check before take-off.
 #include "rigs/core/llm_run.hpp"
 
+#include <algorithm>
 #include <stdexcept>
+
+#include "agent/llm/llm_agent.hpp"
 
 namespace a3::rigs {
 
@@ -16,8 +19,34 @@ agent::llm::LlmEndpoint llm_endpoint(const RunOptions& o) {
   e.max_tokens = o.llm_max_tokens;
   e.connect_timeout_s = o.llm_connect_timeout_s;
   e.total_timeout_s = o.llm_timeout_s;
+  e.stream = o.llm_stream;
+  if (o.llm_retries < 0) throw std::invalid_argument("--llm-retries must be >= 0, got " + std::to_string(o.llm_retries));
+  e.max_retries = o.llm_retries;
+  e.json_output = agent::llm::parse_tool_mode(o.llm_tools) == agent::llm::ToolMode::kJson;
   if (e.provider.empty()) e.provider = agent::llm::provider_from_base_url(e.base_url);
   return e;
+}
+
+std::unique_ptr<agent::Agent> make_llm_agent(const RunOptions& o) {
+  agent::llm::LlmAgentOptions options;
+  options.mode = agent::llm::parse_tool_mode(o.llm_tools);
+  return std::make_unique<agent::llm::LlmAgent>(std::make_unique<agent::llm::LlmClient>(llm_endpoint(o)),
+                                                agent::ToolCatalog::builtin(), options);
+}
+
+void check_llm_endpoint(const agent::llm::LlmEndpoint& endpoint) {
+  agent::llm::LlmEndpoint probe = endpoint;
+  probe.json_output = false;
+  probe.stream = false;
+  probe.max_tokens = 16;
+  probe.max_retries = std::min(endpoint.max_retries, 1);
+  probe.backoff_initial_s = 1.0;
+  agent::llm::LlmClient client(probe);
+  const agent::llm::LlmCallResult r = client.chat({{"user", "Reply with the word ok."}});
+  if (agent::llm::is_endpoint_failure(r)) {
+    throw EndpointUnreachable("the LLM endpoint " + endpoint.base_url + " (model " + endpoint.model +
+                              ") does not answer: " + r.error);
+  }
 }
 
 LlmAgentIdentity llm_agent_identity(const RunOptions& o) {

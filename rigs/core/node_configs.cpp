@@ -108,7 +108,7 @@ std::unique_ptr<agent::Agent> make_agent(const RunOptions& o) {
     }
     inner = std::make_unique<agent::ReplayAgent>(agent::ReplayAgent::from_file(p));
   } else if (o.agent == "llm") {
-    inner = std::make_unique<agent::llm::LlmAgent>(std::make_unique<agent::llm::LlmClient>(llm_endpoint(o)));
+    inner = make_llm_agent(o);
   } else {
     throw std::invalid_argument("unknown agent '" + o.agent +
                                 "' (scripted, llm, replay:<episode.json>, replay:alphabench:<path>)");

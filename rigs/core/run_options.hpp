@@ -31,6 +31,9 @@ struct RunOptions {
   int llm_max_tokens = 2048;               // completion tokens per call
   double llm_connect_timeout_s = 10.0;
   double llm_timeout_s = 180.0;            // per HTTP attempt
+  std::string llm_tools = "native";        // native (OpenAI tool calls) | json (a JSON object in the text)
+  bool llm_stream = false;                 // stream the answers (server-sent events; ttft/ttlt in _rig)
+  int llm_retries = 4;                     // HTTP retries of one call (429/5xx/network), with backoff
   std::string think_time = "0";            // see agent/conversation/think_time.hpp
   std::string slice;                       // overrides the scenario's initial slice (eMBB, URLLC, mMTC); empty: keep
   Runtime runtime = Runtime::kReal;

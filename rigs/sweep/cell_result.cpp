@@ -34,7 +34,8 @@ CellCheck check_cell(const std::filesystem::path& dir, const SweepCell& cell) {
     check.why_not = "episode.json has no _rig.status (not written by a3rig run)";
     return check;
   }
-  if (status == "interrupted" || status.rfind("node_failed", 0) == 0 || status.rfind("realtime_violated", 0) == 0) {
+  if (status == "interrupted" || status.rfind("node_failed", 0) == 0 || status.rfind("realtime_violated", 0) == 0 ||
+      status.rfind("agent_failed", 0) == 0 || status.rfind("endpoint_failed", 0) == 0) {
     check.why_not = "the run ended " + status;
     check.realtime_violated = status.rfind("realtime_violated", 0) == 0;
     return check;

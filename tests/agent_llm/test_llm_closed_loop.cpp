@@ -45,6 +45,7 @@ TEST(LlmClosedLoop, SurveyFieldFlownByTheLlmAgentAgainstTheScriptedResponder) {
 
   rigs::RunOptions o = test::virtual_run("survey-field", "llm-closed-loop");
   o.agent = "llm";
+  o.llm_tools = "json";  // the paper's protocol: the prompt carries the catalogue as text
   o.llm_base_url = s.server.base_url();
   o.llm_model = "scripted-policy";
   const rigs::RunResult llm = test::run(o);
