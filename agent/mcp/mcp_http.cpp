@@ -134,6 +134,7 @@ McpHttpTransport::McpHttpTransport(McpRig& rig, McpServerOptions options, McpLog
 McpHttpTransport::~McpHttpTransport() { stop(); }
 
 int McpHttpTransport::start() {
+  if (stopping_) throw std::runtime_error("mcp http: start after stop(): the server has been stopped");
   const int port = options_.http_port == 0 ? server_->bind_to_any_port(options_.http_host)
                    : server_->bind_to_port(options_.http_host, options_.http_port) ? options_.http_port : -1;
   if (port <= 0)

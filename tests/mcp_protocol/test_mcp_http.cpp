@@ -228,6 +228,15 @@ TEST_F(McpHttpTest, StopEndsWaitWithoutClosingTheSession) {
   EXPECT_FALSE(rig.closed);
 }
 
+TEST(McpHttpBind, StartAfterStopThrows) {
+  FakeMcpRig rig;
+  McpServerOptions options;
+  options.log = [](const std::string&) {};
+  McpServer server(rig, options);
+  server.stop();
+  EXPECT_THROW(server.start_http(), std::runtime_error);
+}
+
 TEST(McpHttpBind, ATakenPortThrowsNamingIt) {
   FakeMcpRig rig;
   McpServerOptions options;
