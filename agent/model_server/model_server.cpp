@@ -81,11 +81,16 @@ int64_t estimate_tokens(std::size_t characters) { return static_cast<int64_t>((c
 
 std::size_t prompt_characters(const json& request) {
   std::size_t n = 0;
-  if (request.is_object() && request.contains("messages") && request["messages"].is_array()) {
+  if (!request.is_object()) return 0;
+  if (request.contains("messages") && request["messages"].is_array()) {
     for (const auto& m : request["messages"]) {
-      if (m.is_object() && m.contains("content")) n += content_characters(m["content"]);
+      if (!m.is_object()) continue;
+      if (m.contains("content")) n += content_characters(m["content"]);
+      if (m.contains("tool_calls")) n += utf8_code_points(m["tool_calls"].dump());
     }
   }
+  // The function definitions are part of the prompt a model reads (and is billed for).
+  if (request.contains("tools") && request["tools"].is_array()) n += utf8_code_points(request["tools"].dump());
   return n;
 }
 

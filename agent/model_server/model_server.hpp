@@ -79,7 +79,8 @@ struct ModelServerStats {
 // Tokens estimated from characters, ~4 characters per token (what OpenAI's tokenizers average on
 // English text), rounded up: for replies whose responder does not count tokens.
 int64_t estimate_tokens(std::size_t characters);
-// Characters (UTF-8 code points) of every message's content in a chat-completions request.
+// Characters (UTF-8 code points) of a chat-completions request's prompt: every message's content
+// and tool calls, and the `tools` definitions (as JSON text).
 std::size_t prompt_characters(const nlohmann::json& request);
 
 // Share of the latency before a stream's first chunk (the rest spreads the other chunks).

@@ -259,6 +259,17 @@ TEST(OpenAiCompat, ToolChoiceRequiredGetsACallWithArgumentsSatisfyingTheSchema) 
   }
 }
 
+TEST(OpenAiCompat, PromptTokensCountTheToolDefinitionsAndEarlierCalls) {
+  const json plain = chat();
+  json with_tools = chat({{"tools", json::array({tool("climb", kAltitudeSchema)})}});
+  EXPECT_EQ(ms::prompt_characters(with_tools), ms::prompt_characters(plain) + with_tools["tools"].dump().size());
+  json with_call = plain;
+  with_call["messages"].push_back({{"role", "assistant"}, {"content", nullptr},
+                                   {"tool_calls", {{{"id", "c"}, {"type", "function"},
+                                                    {"function", {{"name", "land"}, {"arguments", "{}"}}}}}}});
+  EXPECT_GT(ms::prompt_characters(with_call), ms::prompt_characters(plain) + 20);
+}
+
 TEST(OpenAiCompat, StreamSendsRolePiecesFinishReasonUsageAndDone) {
   const std::string reply = "The quick brown drone jumps over the lazy wind turbine, twice.";
   Served s({}, {reply});
