@@ -4,10 +4,15 @@
 // modes; against a server that only ever answers with text, native mode fails every agent turn
 // with a clear per-turn error and the run ends agent_failed (exit status 6), its episode still a
 // valid α³-Bench episode; against an endpoint that is gone, the run ends endpoint_failed (exit
-// status 7) after 2 agent turns, the episode written with that status.
+// status 7) after 2 agent turns, the episode written with that status. A streamed native run
+// records each turn's time to the first and the last token; the `a3rig run` program flies
+// native by default and its episode passes `a3rig validate`.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
 #include <cstdlib>
+#include <fstream>
 
 #include "agent/model_server/model_server.hpp"
 #include "agent/model_server/scripted_responder.hpp"
@@ -153,6 +158,52 @@ TEST(LlmNativeClosedLoop, AnEndpointThatIsGoneEndsTheRunEndpointFailedAfterTwoAg
   // Written with its status; too short a dialogue to be scored (as an interrupted run's).
   EXPECT_TRUE(std::filesystem::exists(r.episode_path));
   EXPECT_EQ(r.episode["_rig"]["status"], r.status);
+}
+
+TEST(LlmNativeClosedLoop, AStreamedNativeRunRecordsTheTimeToFirstAndLastTokenOfEveryTurn) {
+  clear_llm_environment();
+  ScriptedServer s;
+  rigs::RunOptions o = llm_run("survey-field", "native", s.server.base_url());
+  o.llm_stream = true;
+  const rigs::RunResult r = test::run(o);
+  ASSERT_EQ(r.status, "completed");
+  EXPECT_TRUE(r.episode.value("success", false));
+  int streamed = 0;
+  for (const auto& rig : r.episode["_rig"]["turns"]) {
+    if (rig["speaker"] != "agent") continue;
+    SCOPED_TRACE("turn " + rig["turn"].dump());
+    const auto& a = rig["attempt_log"].at(0);
+    EXPECT_EQ(a.value("streamed", false), true) << a.dump();
+    ASSERT_TRUE(a.contains("ttft_s") && a.contains("ttlt_s")) << a.dump();
+    EXPECT_GT(a["ttft_s"].get<double>(), 0.0);
+    EXPECT_LE(a["ttft_s"].get<double>(), a["ttlt_s"].get<double>());
+    EXPECT_LE(a["ttlt_s"].get<double>(), a["wall_time_s"].get<double>());
+    ++streamed;
+  }
+  EXPECT_GE(streamed, 4);
+}
+
+// The program, as a user runs it: native by default, the episode valid for `a3rig validate`.
+TEST(LlmNativeClosedLoop, TheCommandFliesNativeByDefaultAndWritesAValidEpisode) {
+  clear_llm_environment();
+  ScriptedServer s;
+  const std::string a3rig = std::string(A3_BINARY_DIR) + "/a3rig";
+  const std::string out = std::string(::testing::TempDir()) + "a3rig-native-cli-" + std::to_string(::getpid());
+  const std::string run = a3rig + " run --agent llm --llm-base-url " + s.server.base_url() +
+                          " --llm-model scripted-policy --runtime virtual --scenario parcel-delivery --no-plot "
+                          "--no-lcm-log -q --out " + out + " > " + out + ".log 2>&1";
+  const int run_status = std::system(run.c_str());
+  ASSERT_TRUE(WIFEXITED(run_status));
+  ASSERT_EQ(WEXITSTATUS(run_status), 0) << run;
+  const std::string validate = a3rig + " validate " + out + "/episode.json > /dev/null 2>&1";
+  const int validate_status = std::system(validate.c_str());
+  EXPECT_TRUE(WIFEXITED(validate_status) && WEXITSTATUS(validate_status) == 0) << validate;
+  const nlohmann::json episode = nlohmann::json::parse(std::ifstream(out + "/episode.json"));
+  EXPECT_EQ(episode["_rig"]["status"], "completed");
+  for (const auto& rig : episode["_rig"]["turns"]) {
+    if (rig["speaker"] != "agent") continue;
+    EXPECT_EQ(rig["attempt_log"].at(0)["tool_mode"], "native");
+  }
 }
 
 }  // namespace
