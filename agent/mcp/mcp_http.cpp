@@ -165,7 +165,7 @@ void McpHttpTransport::stop() {
   if (listen_thread_.joinable()) listen_thread_.join();
 }
 
-bool McpHttpTransport::admit(const httplib::Request& request, httplib::Response& response, bool initializing) {
+bool McpHttpTransport::admit_origin_and_version(const httplib::Request& request, httplib::Response& response) {
   if (request.has_header("Origin") && !local_origin(request.get_header_value("Origin"))) {
     refuse(response, 403, jsonrpc::kInvalidRequest, "forbidden: Origin '" + request.get_header_value("Origin") + "' is not local");
     return false;
@@ -175,20 +175,24 @@ bool McpHttpTransport::admit(const httplib::Request& request, httplib::Response&
            request.get_header_value("MCP-Protocol-Version") + "' (this server speaks 2025-06-18 and 2025-03-26)");
     return false;
   }
-  if (initializing) return true;
-  std::lock_guard lock(mutex_);
-  if (!request.has_header("Mcp-Session-Id")) {
-    refuse(response, 400, jsonrpc::kInvalidRequest, "bad request: header Mcp-Session-Id is required after initialize");
-    return false;
-  }
-  if (session_id_.empty() || session_over_ || request.get_header_value("Mcp-Session-Id") != session_id_) {
-    refuse(response, 404, jsonrpc::kInvalidRequest, "session not found: '" + request.get_header_value("Mcp-Session-Id") + "'");
-    return false;
-  }
   return true;
 }
 
+std::shared_ptr<McpProtocol> McpHttpTransport::admit_session(const httplib::Request& request, httplib::Response& response) {
+  std::lock_guard lock(mutex_);
+  if (!request.has_header("Mcp-Session-Id")) {
+    refuse(response, 400, jsonrpc::kInvalidRequest, "bad request: header Mcp-Session-Id is required after initialize");
+    return nullptr;
+  }
+  if (session_id_.empty() || session_over_ || request.get_header_value("Mcp-Session-Id") != session_id_) {
+    refuse(response, 404, jsonrpc::kInvalidRequest, "session not found: '" + request.get_header_value("Mcp-Session-Id") + "'");
+    return nullptr;
+  }
+  return protocol_;
+}
+
 void McpHttpTransport::on_post(const httplib::Request& request, httplib::Response& response) {
+  if (!admit_origin_and_version(request, response)) return;
   if (request.get_header_value("Content-Type").find("application/json") == std::string::npos) {
     refuse(response, 415, jsonrpc::kInvalidRequest, "unsupported media type: POST a JSON-RPC message as application/json");
     return;
@@ -202,22 +206,16 @@ void McpHttpTransport::on_post(const httplib::Request& request, httplib::Respons
     refuse(response, 400, jsonrpc::kParseError, "parse error: the POST body is not valid JSON");
     return;
   }
-  const bool initializing = McpProtocol::is_initialize(message);
-  if (!admit(request, response, initializing)) return;
-  std::shared_ptr<McpProtocol> protocol = initializing ? open_session(message, response) : nullptr;
-  if (initializing) return;
-  {
-    std::lock_guard lock(mutex_);
-    protocol = protocol_;
-  }
-  answer(protocol, message, McpProtocol::wants_progress(message) && accepts_event_stream(request), response);
+  if (McpProtocol::is_initialize(message)) return open_session(message, response);
+  if (const auto protocol = admit_session(request, response))
+    answer(protocol, message, McpProtocol::wants_progress(message) && accepts_event_stream(request), response);
 }
 
-std::shared_ptr<McpProtocol> McpHttpTransport::open_session(const json& message, httplib::Response& response) {
+void McpHttpTransport::open_session(const json& message, httplib::Response& response) {
   std::lock_guard lock(mutex_);
   if (!session_id_.empty()) {
     refuse(response, 409, jsonrpc::kInvalidRequest, "conflict: this rig serves one MCP session (one vehicle, one client), and it is taken");
-    return nullptr;
+    return;
   }
   auto protocol = std::make_shared<McpProtocol>(rig_, log_);
   json reply;
@@ -229,7 +227,6 @@ std::shared_ptr<McpProtocol> McpHttpTransport::open_session(const json& message,
     log_("mcp: session " + session_id_ + " opened (protocol " + protocol->protocol_version() + ")");
   }
   response.set_content(dump(reply), "application/json");
-  return protocol;
 }
 
 void McpHttpTransport::answer(const std::shared_ptr<McpProtocol>& protocol, const json& message, bool stream,
@@ -258,7 +255,7 @@ void McpHttpTransport::answer(const std::shared_ptr<McpProtocol>& protocol, cons
 }
 
 void McpHttpTransport::on_delete(const httplib::Request& request, httplib::Response& response) {
-  if (!admit(request, response, false)) return;
+  if (!admit_origin_and_version(request, response) || !admit_session(request, response)) return;
   end_session();
   response.status = 200;
 }
@@ -279,7 +276,7 @@ void McpHttpTransport::end_session() {
 }
 
 void McpHttpTransport::on_get(const httplib::Request& request, httplib::Response& response) {
-  if (!admit(request, response, false)) return;
+  if (!admit_origin_and_version(request, response) || !admit_session(request, response)) return;
   response.status = 405;
   response.set_header("Allow", "POST, DELETE");
 }

@@ -41,9 +41,12 @@ class McpHttpTransport {
   void on_post(const httplib::Request& request, httplib::Response& response);
   void on_delete(const httplib::Request& request, httplib::Response& response);
   void on_get(const httplib::Request& request, httplib::Response& response);
-  // Header checks shared by every method; false (and `response` filled) when refused.
-  bool admit(const httplib::Request& request, httplib::Response& response, bool initializing);
-  std::shared_ptr<McpProtocol> open_session(const nlohmann::json& message, httplib::Response& response);
+  // Origin and MCP-Protocol-Version, checked first on every method; false (and `response`
+  // filled) when refused.
+  bool admit_origin_and_version(const httplib::Request& request, httplib::Response& response);
+  // The session named by Mcp-Session-Id; null (and `response` filled: 400 or 404) when refused.
+  std::shared_ptr<McpProtocol> admit_session(const httplib::Request& request, httplib::Response& response);
+  void open_session(const nlohmann::json& message, httplib::Response& response);
   void answer(const std::shared_ptr<McpProtocol>& protocol, const nlohmann::json& message,
               bool stream, httplib::Response& response);
   void end_session();

@@ -100,6 +100,9 @@ TEST_F(McpHttpTest, AForeignOriginIs403AndALocalOneIsServed) {
   auto foreign = post(kInitialize, {{"Origin", "https://evil.example"}});
   ASSERT_TRUE(foreign);
   EXPECT_EQ(foreign->status, 403);
+  auto foreign_form = client->Post("/mcp", {{"Origin", "http://evil.example"}}, "a=1", "application/x-www-form-urlencoded");
+  ASSERT_TRUE(foreign_form);
+  EXPECT_EQ(foreign_form->status, 403);  // the origin is judged before anything else
   auto local = post(kInitialize, {{"Origin", "http://localhost:6274"}});
   ASSERT_TRUE(local);
   EXPECT_EQ(local->status, 200);
