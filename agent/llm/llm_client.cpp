@@ -379,12 +379,84 @@ bool is_endpoint_failure(const LlmCallResult& result) {
   return s == 0 || s == 401 || s == 403 || s == 404 || s == 408 || s == 429 || s >= 500;
 }
 
+namespace {
+
+// What one attempt came to.
+struct Verdict {
+  LlmAttempt attempt;
+  bool retryable = false;  // worth another try after a backoff
+  bool adapted = false;    // a refused parameter was adjusted: ask again at once
+};
+
+// A 2xx answer into `result`; "" or what is wrong with it.
+std::string take_answer(Exchange& ex, const std::string& url, const std::string& key, LlmCallResult& result) {
+  ChatResponse parsed;
+  const std::string error = read_answer(ex, url, parsed);
+  if (!error.empty()) return error;
+  redact_answer(parsed, key);
+  result.ok = true;
+  result.content = std::move(parsed.content);
+  result.tool_calls = std::move(parsed.tool_calls);
+  result.finish_reason = std::move(parsed.finish_reason);
+  result.model = std::move(parsed.model);
+  result.usage = std::move(parsed.usage);
+  result.streamed = ex.streaming;
+  result.ttft_s = ex.ttft_s;
+  result.ttlt_s = ex.ttlt_s;
+  return "";
+}
+
+// The cases of an attempt: too large, a bad stream, no HTTP answer, an answer (2xx), a refusal
+// of a parameter, another HTTP error.
+Verdict judge(Exchange& ex, const std::string& url, const LlmEndpoint& endpoint, const SentParameters& sent,
+              RefusedParameters& refused, LlmCallResult& result) {
+  const std::string& key = endpoint.api_key;
+  // Before anything is cut into an excerpt (which could cut a key in two) or returned.
+  ex.body = redact(std::move(ex.body), key);
+  ex.stream_problem = redact(std::move(ex.stream_problem), key);
+  Verdict v;
+  LlmAttempt& attempt = v.attempt;
+  attempt.duration_s = seconds_since(ex.start);
+  attempt.http_status = ex.code == CURLE_OK || !ex.stream_problem.empty() ? static_cast<int>(ex.http_status) : 0;
+  attempt.ttft_s = ex.ttft_s;
+  attempt.ttlt_s = ex.ttlt_s;
+  result.http_attempts += 1;
+  if (attempt.http_status != 0) result.http_status = attempt.http_status;
+
+  if (ex.body_too_large || ex.code == CURLE_FILESIZE_EXCEEDED) {
+    attempt.error = "response from " + url + " is larger than " + size_text(endpoint.max_response_bytes) +
+                    " (max_response_bytes); not read";
+  } else if (!ex.stream_problem.empty()) {
+    attempt.error = "response from " + url + ": " + ex.stream_problem;
+  } else if (ex.code != CURLE_OK) {
+    attempt.error = describe_curl_error(ex, endpoint) + (ex.streaming ? " (in the middle of the stream)" : "");
+    v.retryable = is_retryable_curl_error(ex.code);
+  } else if (ex.http_status >= 200 && ex.http_status < 300) {
+    attempt.error = take_answer(ex, url, key, result);
+    if (!attempt.error.empty() && ex.streaming) {  // a cut stream is a network failure, not an answer
+      attempt.http_status = 0;
+      result.http_status = 0;
+      v.retryable = true;
+    }
+  } else {
+    attempt.error = "HTTP " + std::to_string(ex.http_status) + ": " + error_text_from_body(ex.body);
+    const std::string adapted = adapt_to_refusal(static_cast<int>(ex.http_status), ex.body, sent, refused);
+    // The provider does not take a parameter: ask again without it, now and from now on.
+    if (!adapted.empty()) attempt.error += " (" + adapted + " and retrying)";
+    v.adapted = !adapted.empty();
+    v.retryable = is_retryable_http_status(static_cast<int>(ex.http_status));
+  }
+  attempt.error = redact(attempt.error, key);
+  return v;
+}
+
+}  // namespace
+
 LlmCallResult LlmClient::send(const ChatRequest& request) {
   LlmCallResult result;
   const std::string url = endpoint_.base_url + "/chat/completions";
-  const std::string& key = endpoint_.api_key;
   const auto start = Clock::now();
-  curl_slist* headers = request_headers(key, endpoint_.stream);
+  curl_slist* headers = request_headers(endpoint_.api_key, endpoint_.stream);
   int retries_made = 0;
   std::string final_error;
   for (;;) {
@@ -400,75 +472,28 @@ LlmCallResult LlmClient::send(const ChatRequest& request) {
     ex.max_bytes = endpoint_.max_response_bytes;
     ex.stream_requested = endpoint_.stream;
     perform(static_cast<CURL*>(curl_), url, request_body, headers, endpoint_, ex);
-    // Before anything is cut into an excerpt (which could cut a key in two) or returned.
-    ex.body = redact(std::move(ex.body), key);
-    ex.stream_problem = redact(std::move(ex.stream_problem), key);
-
-    LlmAttempt attempt;
-    attempt.duration_s = seconds_since(ex.start);
-    attempt.http_status = ex.code == CURLE_OK || !ex.stream_problem.empty() ? static_cast<int>(ex.http_status) : 0;
-    attempt.ttft_s = ex.ttft_s;
-    attempt.ttlt_s = ex.ttlt_s;
-    result.http_attempts += 1;
-    if (attempt.http_status != 0) result.http_status = attempt.http_status;
-
-    bool retryable = false;
-    if (ex.body_too_large || ex.code == CURLE_FILESIZE_EXCEEDED) {
-      attempt.error = "response from " + url + " is larger than " + size_text(endpoint_.max_response_bytes) +
-                      " (max_response_bytes); not read";
-    } else if (!ex.stream_problem.empty()) {
-      attempt.error = "response from " + url + ": " + ex.stream_problem;
-    } else if (ex.code != CURLE_OK) {
-      attempt.error = describe_curl_error(ex, endpoint_) + (ex.streaming ? " (in the middle of the stream)" : "");
-      retryable = is_retryable_curl_error(ex.code);
-    } else if (ex.http_status >= 200 && ex.http_status < 300) {
-      ChatResponse parsed;
-      attempt.error = read_answer(ex, url, parsed);
-      if (attempt.error.empty()) {
-        redact_answer(parsed, key);
-        result.ok = true;
-        result.content = std::move(parsed.content);
-        result.tool_calls = std::move(parsed.tool_calls);
-        result.finish_reason = std::move(parsed.finish_reason);
-        result.model = std::move(parsed.model);
-        result.usage = std::move(parsed.usage);
-        result.streamed = ex.streaming;
-        result.ttft_s = ex.ttft_s;
-        result.ttlt_s = ex.ttlt_s;
-      } else if (ex.streaming) {
-        attempt.http_status = 0;  // a cut stream is a network failure, not an answer
-        result.http_status = 0;
-        retryable = true;
-      }
-    } else {
-      attempt.error = "HTTP " + std::to_string(ex.http_status) + ": " + error_text_from_body(ex.body);
-      const std::string adapted = adapt_to_refusal(static_cast<int>(ex.http_status), ex.body, sent, refused_);
-      if (!adapted.empty()) {
-        // The provider does not take a parameter: ask again without it, now and from now on.
-        attempt.error = redact(attempt.error + " (" + adapted + " and retrying)", key);
-        result.attempts.push_back(attempt);
-        continue;
-      }
-      retryable = is_retryable_http_status(static_cast<int>(ex.http_status));
+    Verdict v = judge(ex, url, endpoint_, sent, refused_, result);
+    if (v.adapted) {
+      result.attempts.push_back(v.attempt);
+      continue;
     }
-    attempt.error = redact(attempt.error, key);
-    const bool retry = retryable && retries_made < endpoint_.max_retries;
+    const bool retry = v.retryable && retries_made < endpoint_.max_retries;
     if (retry) {
-      attempt.backoff_s = backoff_delay_s(retries_made, endpoint_.backoff_initial_s, endpoint_.backoff_max_s,
-                                          parse_retry_after_s(ex.retry_after, std::time(nullptr)));
+      v.attempt.backoff_s = backoff_delay_s(retries_made, endpoint_.backoff_initial_s, endpoint_.backoff_max_s,
+                                            parse_retry_after_s(ex.retry_after, std::time(nullptr)));
     }
-    result.attempts.push_back(attempt);
+    result.attempts.push_back(v.attempt);
     if (result.ok) break;
     if (!retry) {
-      final_error = attempt.error;
+      final_error = v.attempt.error;
       break;
     }
     ++retries_made;
-    if (attempt.backoff_s > 0.0) sleep_(attempt.backoff_s);
+    if (v.attempt.backoff_s > 0.0) sleep_(v.attempt.backoff_s);
   }
   curl_slist_free_all(headers);
   result.wall_time_s = seconds_since(start);
-  if (!result.ok) result.error = redact(call_error(url, result.attempts, final_error), key);
+  if (!result.ok) result.error = redact(call_error(url, result.attempts, final_error), endpoint_.api_key);
   return result;
 }
 

@@ -1,8 +1,9 @@
 // Whether a sweep cell is done, and its row of results.csv. A cell is complete when its
 // episode.json parses, belongs to the cell (agent, think time, seed) and ended the way an episode
 // ends (completed, time_limit, crashed); an interrupted run, a failed node, a broken real-time
-// contract (realtime_violated: the host, not the agent, decided the outcome), a half-written or
-// missing file leaves the cell incomplete, and a resumed sweep runs it again.
+// contract (realtime_violated: the host, not the agent, decided the outcome), an agent that never
+// acted (agent_failed) or an endpoint that failed (endpoint_failed), a half-written or missing
+// file leaves the cell incomplete, and a resumed sweep runs it again.
 #pragma once
 
 #include <filesystem>

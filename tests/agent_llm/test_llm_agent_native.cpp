@@ -89,6 +89,7 @@ TEST_F(Native, ParallelToolCallsAreTheActionsAndReportTurnGivesIntentAndText) {
   EXPECT_EQ(r.messages[0].role, "system");
   EXPECT_EQ(r.messages[0].content.find("Reply format"), std::string::npos);
   EXPECT_NE(r.messages[0].content.find("report_turn"), std::string::npos);
+  EXPECT_EQ(r.messages[0].content.find("listed below"), std::string::npos) << "nothing is listed in native mode";
   EXPECT_EQ(r.messages[1].role, "user");
   EXPECT_EQ(r.messages[1].content, turn_prompt(played.context(1, test::normal_net()), {}, ToolMode::kNative));
   EXPECT_TRUE(find_context_block(r.messages[1].content).has_value()) << "the context block stays in the message";

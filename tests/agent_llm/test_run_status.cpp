@@ -1,6 +1,7 @@
 // No silent success, from the recorded turns alone: two agent turns in a row that failed at the
 // endpoint make endpoint_failed, a run whose agent turns carried no action is agent_failed, and
-// their exit statuses (6, 7) beside the others; `a3rig run --agent llm` against an endpoint
+// their exit statuses (6, 7) beside the others; a sweep does not take such a run's cell as
+// finished; `a3rig run --agent llm` against an endpoint
 // nobody listens on stops before take-off, non-zero within 20 s, naming the endpoint.
 #include <gtest/gtest.h>
 
@@ -8,8 +9,12 @@
 #include <cstdio>
 #include <sys/wait.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include "rigs/core/agent_outcome.hpp"
 #include "rigs/core/rig_runner.hpp"
+#include "rigs/sweep/cell_result.hpp"
 
 namespace a3 {
 namespace {
@@ -65,6 +70,32 @@ TEST(RunStatus, ExitStatusesOfEveryStatus) {
   EXPECT_EQ(rigs::run_exit_status("realtime_violated: x"), 5);
   EXPECT_EQ(rigs::run_exit_status("agent_failed: x"), 6);
   EXPECT_EQ(rigs::run_exit_status("endpoint_failed: x"), 7);
+}
+
+// A sweep cell whose run ended agent_failed or endpoint_failed is not a finished cell.
+TEST(RunStatus, ASweepCountsAgentAndEndpointFailuresAsUnfinishedCells) {
+  rigs::sweep::SweepCell cell;
+  cell.scenario = "survey-field";
+  cell.agent = "llm";
+  cell.think_time = "0";
+  cell.seed = 42;
+  const std::filesystem::path dir =
+      std::filesystem::path(::testing::TempDir()) / ("a3rig-sweep-status-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  for (const std::string status : {"agent_failed: no agent turn had a valid action (6 agent turns)",
+                                   "endpoint_failed: 2 agent turns in a row failed at the endpoint; last: x",
+                                   "completed"}) {
+    const json episode = {{"dialogue", json::array()},
+                          {"_rig", {{"status", status}, {"agent", "llm"}, {"think_time", "0"}, {"seed", 42u}}}};
+    std::ofstream(dir / "episode.json") << episode.dump();
+    const rigs::sweep::CellCheck check = rigs::sweep::check_cell(dir, cell);
+    if (status == "completed") {
+      EXPECT_TRUE(check.complete) << check.why_not;
+    } else {
+      EXPECT_FALSE(check.complete) << status;
+      EXPECT_EQ(check.why_not, "the run ended " + status);
+    }
+  }
 }
 
 TEST(RunCommand, AnUnreachableEndpointStopsBeforeTakeOffWithin20SecondsNamingIt) {
