@@ -173,6 +173,44 @@ TEST_F(Native, TurnsTheAgentDidNotMakeGetMadeUpIdsThatTheirResultsAnswer) {
   }
 }
 
+TEST_F(Native, AFailedTurnIsAnAssistantMessageWithItsErrorAndNoCalls) {
+  agent::Turn failed;
+  failed.number = 1;
+  failed.speaker = "agent";
+  failed.intent = "agent_error";
+  failed.text = "agent error: no usable reply after 3 attempts: HTTP 400: bad request";
+  agent::Turn reply;
+  reply.number = 2;
+  reply.speaker = "user";
+  reply.intent = "acknowledge";
+  reply.text = "Please try again.";
+  played.dialogue = {failed, reply};
+  const std::vector<ChatMessage> m =
+      history_messages(played.context(3, test::normal_net()), agent::ToolCatalog::builtin(), {});
+  ASSERT_EQ(m.size(), 2u);
+  EXPECT_EQ(m[0].role, "assistant");
+  EXPECT_EQ(m[0].content, failed.text);
+  EXPECT_TRUE(m[0].tool_calls.empty());
+  EXPECT_EQ(m[1].role, "user");
+  EXPECT_EQ(m[1].content, "Supervisor (turn 2, intent acknowledge): Please try again.");
+}
+
+TEST_F(Native, ALongHistoryKeepsTheNewestObservationsWholeAndCutsTheOldestToTheirStatus) {
+  played = test::play_scripted("survey-field", 10);
+  DialogueLimits tight;
+  tight.max_dialogue_chars = 1;  // everything but the newest keep_full_turns is cut
+  tight.keep_full_turns = 2;
+  const agent::AgentContext c = played.context(11, test::normal_net());
+  const std::vector<ChatMessage> full = history_messages(c, agent::ToolCatalog::builtin(), {});
+  const std::vector<ChatMessage> cut = history_messages(c, agent::ToolCatalog::builtin(), {}, tight);
+  ASSERT_EQ(full.size(), cut.size()) << "the same turns and calls, only observations shortened";
+  std::size_t full_chars = 0, cut_chars = 0;
+  for (const auto& m : full) full_chars += m.content.size();
+  for (const auto& m : cut) cut_chars += m.content.size();
+  EXPECT_LT(cut_chars, full_chars);
+  EXPECT_EQ(full.back().content, cut.back().content) << "the newest turn is whole";
+}
+
 TEST_F(Native, ATextOnlyReplyIsRetriedStricterThenFailsTheTurnWithAClearError) {
   model.answers = {text_reply("I will take off now.")};
   LlmAgent agent(model.function(), "", agent::ToolCatalog::builtin(), native());
