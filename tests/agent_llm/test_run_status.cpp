@@ -1,8 +1,9 @@
 // No silent success, from the recorded turns alone: two agent turns in a row that failed at the
 // endpoint make endpoint_failed, a run whose agent turns carried no action is agent_failed, and
 // their exit statuses (6, 7) beside the others; a sweep does not take such a run's cell as
-// finished; `a3rig run --agent llm` against an endpoint
-// nobody listens on stops before take-off, non-zero within 20 s, naming the endpoint.
+// finished; the endpoint check before take-off passes any answer but the endpoint's failures;
+// `a3rig run --agent llm` against an endpoint nobody listens on stops before take-off, non-zero
+// within 20 s, naming the endpoint.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -13,8 +14,10 @@
 #include <fstream>
 
 #include "rigs/core/agent_outcome.hpp"
+#include "rigs/core/llm_run.hpp"
 #include "rigs/core/rig_runner.hpp"
 #include "rigs/sweep/cell_result.hpp"
+#include "tests/agent_llm_client/scripted_openai_server.hpp"
 
 namespace a3 {
 namespace {
@@ -96,6 +99,43 @@ TEST(RunStatus, ASweepCountsAgentAndEndpointFailuresAsUnfinishedCells) {
       EXPECT_EQ(check.why_not, "the run ended " + status);
     }
   }
+}
+
+agent::llm::LlmEndpoint endpoint_at(const std::string& base_url) {
+  agent::llm::LlmEndpoint e;
+  e.base_url = base_url;
+  e.model = "probe-model";
+  e.max_retries = 0;
+  return e;
+}
+
+TEST(EndpointCheck, AnyAnswerButTheEndpointsFailuresPasses) {
+  test::ScriptedOpenAiServer refuses(test::ScriptedOpenAiServer::sequence({{400, R"({"error":{"message":"no"}})"}}));
+  EXPECT_NO_THROW(rigs::check_llm_endpoint(endpoint_at(refuses.base_url())));
+  const json sent = refuses.requests().at(0).body;
+  EXPECT_EQ(sent["max_tokens"], 16);
+  EXPECT_FALSE(sent.contains("tools"));
+  EXPECT_FALSE(sent.contains("response_format"));
+}
+
+TEST(EndpointCheck, AMissingModelOrAServerErrorStopsTheRunNamingTheEndpoint) {
+  test::ScriptedOpenAiServer missing(
+      test::ScriptedOpenAiServer::sequence({{404, R"({"error":{"message":"model probe-model not found"}})"}}));
+  try {
+    rigs::check_llm_endpoint(endpoint_at(missing.base_url()));
+    FAIL() << "a 404 passed the check";
+  } catch (const rigs::EndpointUnreachable& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("the LLM endpoint " + missing.base_url() + " (model probe-model) does not answer"),
+              std::string::npos)
+        << what;
+    EXPECT_NE(what.find("model probe-model not found"), std::string::npos) << what;
+  }
+  test::ScriptedOpenAiServer broken(test::ScriptedOpenAiServer::sequence({{503, "{}"}}));
+  agent::llm::LlmEndpoint e = endpoint_at(broken.base_url());
+  e.max_retries = 3;
+  EXPECT_THROW(rigs::check_llm_endpoint(e), rigs::EndpointUnreachable);
+  EXPECT_EQ(broken.requests().size(), 2u) << "the check retries once, whatever the run's retries";
 }
 
 TEST(RunCommand, AnUnreachableEndpointStopsBeforeTakeOffWithin20SecondsNamingIt) {
