@@ -86,11 +86,9 @@ std::string supervisor_message(const json& turn) {
          "): " + turn.value("text", "");
 }
 
-}  // namespace
-
 // The role and safety rules as json mode states them, pointing at the functions instead of a
 // list in the text.
-static std::string role_and_safety_for_functions() {
+std::string role_and_safety_for_functions() {
   std::string text = role_and_safety_text();
   static const std::string kListed = "listed below";
   for (std::size_t at = text.find(kListed); at != std::string::npos; at = text.find(kListed, at)) {
@@ -98,6 +96,8 @@ static std::string role_and_safety_for_functions() {
   }
   return text;
 }
+
+}  // namespace
 
 std::string native_system_prompt(const ToolCatalog& tools, int attempt) {
   std::string out = role_and_safety_for_functions() + "\n" + native_instructions(tools);
