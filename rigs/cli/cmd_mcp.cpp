@@ -87,14 +87,7 @@ int serve(McpArgs& a) {
             (o.runtime == Runtime::kVirtual ? "virtual time" : "real time") + ", seed " + std::to_string(o.seed) +
             ", output " + o.out_dir.string());
   to_stderr("mission: " + scenario.mission.description);
-  install_stop_signals();
-  std::atomic<bool> finished{false};
-  std::thread watcher([&] {
-    while (!finished) {
-      if (stop_requested()) stop = true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-  });
+  const StopWatcher watcher(stop);
   EpisodeThread episode;
   episode.start(scenario, o, *agent, server, stop);
   try {
@@ -110,14 +103,10 @@ int serve(McpArgs& a) {
   } catch (...) {
     stop = true;
     episode.thread.join();
-    finished = true;
-    watcher.join();
     throw;
   }
   agent->client_closed();
   episode.thread.join();
-  finished = true;
-  watcher.join();
   if (episode.failure) std::rethrow_exception(episode.failure);
   return run_exit_status(episode.status);
 }
@@ -149,7 +138,8 @@ A3_REGISTER_COMMAND("12-mcp", [](CLI::App& app) {
       "client leaves, and then a3rig mcp exits. Ctrl-C stops the run, writes the episode and ends the session.\n"
       "Exit status (as a3rig run): 0 the episode was written, 2 bad usage or input, 3 interrupted (the client left "
       "mid-dialogue, or Ctrl-C; episode written), 4 a node failed or froze (episode written), 5 the real-time "
-      "contract was broken (episode written).");
+      "contract was broken (episode written), 6 the client never made a vehicle or A2A call (status agent_failed; "
+      "episode written).");
   add_scenario_run_flags(*cmd, args->flags);
   cmd->add_option("--http", args->http,
                   "serve Streamable HTTP on HOST:PORT (e.g. 127.0.0.1:8765; endpoint /mcp) instead of stdio");

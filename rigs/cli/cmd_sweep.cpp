@@ -111,15 +111,8 @@ int run(const SweepArgs& args) {
     return 0;
   }
 
-  install_stop_signals();
   std::atomic<bool> stop{false};
-  std::atomic<bool> finished{false};
-  std::thread watcher([&] {
-    while (!finished) {
-      if (stop_requested()) stop = true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-  });
+  auto watcher = std::make_unique<StopWatcher>(stop);
   sweep::ProgressBar bar(stderr, ::isatty(STDERR_FILENO) == 1);
   sweep::SweepRunOptions options;
   options.out_dir = args.out;
@@ -128,15 +121,8 @@ int run(const SweepArgs& args) {
   options.rerun_complete = args.rerun;
   options.realtime_retries = args.realtime_retries;
   sweep::SweepRunSummary summary;
-  try {
-    summary = sweep::run_sweep(grid, options, runner, [&](const sweep::ProgressCounts& c) { bar.update(c); }, stop);
-  } catch (...) {
-    finished = true;
-    watcher.join();
-    throw;
-  }
-  finished = true;
-  watcher.join();
+  summary = sweep::run_sweep(grid, options, runner, [&](const sweep::ProgressCounts& c) { bar.update(c); }, stop);
+  watcher.reset();
   bar.finish(summary.counts);
 
   const auto& c = summary.counts;

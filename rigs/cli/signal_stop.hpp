@@ -1,10 +1,13 @@
 // Ctrl-C and SIGTERM for long-running commands: the first asks for a clean stop (the command
-// polls stop_requested()), a second one ends the program at once.
+// polls stop_requested(), or a StopWatcher turns it into its own stop flag), a second one ends
+// the program at once.
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <cstdlib>
+#include <thread>
 
 namespace a3::rigs {
 
@@ -22,5 +25,31 @@ inline void install_stop_signals() {
 }
 
 inline bool stop_requested() { return stop_signal_count().load() > 0; }
+
+// Installs the handlers and, while it lives, sets `stop` once a stop is requested (polled every
+// 50 ms on a thread of its own: a signal handler may only touch the counter).
+class StopWatcher {
+ public:
+  explicit StopWatcher(std::atomic<bool>& stop) : stop_(stop) {
+    install_stop_signals();
+    thread_ = std::thread([this] {
+      while (!finished_) {
+        if (stop_requested()) stop_ = true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      }
+    });
+  }
+  ~StopWatcher() {
+    finished_ = true;
+    thread_.join();
+  }
+  StopWatcher(const StopWatcher&) = delete;
+  StopWatcher& operator=(const StopWatcher&) = delete;
+
+ private:
+  std::atomic<bool>& stop_;
+  std::atomic<bool> finished_{false};
+  std::thread thread_;
+};
 
 }  // namespace a3::rigs

@@ -8,32 +8,16 @@
 
 #include <cstdlib>
 
-#include "agent/model_server/model_server.hpp"
-#include "agent/model_server/scripted_responder.hpp"
+#include "tests/agent_llm/scripted_server.hpp"
 #include "tests/rigs/rig_test_support.hpp"
 
 namespace a3 {
 namespace {
 
-namespace ms = agent::model_server;
 
 constexpr double kServerLatency_s = 0.25;
 
-struct ScriptedServer {
-  ms::ModelServer server;
-  explicit ScriptedServer(const std::string& latency)
-      : server(std::make_unique<ms::ScriptedResponder>(), options(latency), [](const std::string&) {}) {
-    server.start();
-  }
-  ~ScriptedServer() { server.stop(); }
-  static ms::ModelServerOptions options(const std::string& latency) {
-    ms::ModelServerOptions o;
-    o.port = 0;
-    o.latency = latency;
-    o.quiet = true;
-    return o;
-  }
-};
+using test::ScriptedServer;
 
 TEST(LlmClosedLoop, SurveyFieldFlownByTheLlmAgentAgainstTheScriptedResponder) {
   // Keys or endpoints of the user's environment play no part here.

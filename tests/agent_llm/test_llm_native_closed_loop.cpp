@@ -14,8 +14,7 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "agent/model_server/model_server.hpp"
-#include "agent/model_server/scripted_responder.hpp"
+#include "tests/agent_llm/scripted_server.hpp"
 #include "rigs/core/rig_runner.hpp"
 #include "rigs/core/scenario.hpp"
 #include "tests/rigs/rig_test_support.hpp"
@@ -26,7 +25,6 @@
 namespace a3 {
 namespace {
 
-namespace ms = agent::model_server;
 
 void clear_llm_environment() {
   for (const char* name : {"A3_LLM_API_KEY", "A3_LLM_API_KEY_FILE", "OPENAI_API_KEY", "A3_LLM_PROVIDER",
@@ -35,19 +33,7 @@ void clear_llm_environment() {
   }
 }
 
-struct ScriptedServer {
-  ms::ModelServer server;
-  ScriptedServer() : server(std::make_unique<ms::ScriptedResponder>(), options(), [](const std::string&) {}) {
-    server.start();
-  }
-  ~ScriptedServer() { server.stop(); }
-  static ms::ModelServerOptions options() {
-    ms::ModelServerOptions o;
-    o.port = 0;
-    o.quiet = true;
-    return o;
-  }
-};
+using test::ScriptedServer;
 
 // A model that only ever answers with text, whatever it is asked.
 struct TextOnlyServer {

@@ -7,38 +7,21 @@
 
 #include <cstdlib>
 
-#include "agent/model_server/model_server.hpp"
-#include "agent/model_server/scripted_responder.hpp"
+#include "tests/agent_llm/scripted_server.hpp"
 #include "tests/rigs/real_time_support.hpp"
 
 namespace a3 {
 namespace {
 
-namespace ms = agent::model_server;
-
 constexpr double kServerLatency_s = 0.25;
 constexpr double kRealTimeFactor = 8.0;
 
-struct ScriptedServer {
-  ms::ModelServer server;
-  ScriptedServer() : server(std::make_unique<ms::ScriptedResponder>(), options(), [](const std::string&) {}) {
-    server.start();
-  }
-  ~ScriptedServer() { server.stop(); }
-  static ms::ModelServerOptions options() {
-    ms::ModelServerOptions o;
-    o.port = 0;
-    o.quiet = true;
-    o.latency = "fixed:" + std::to_string(kServerLatency_s);
-    return o;
-  }
-};
 
 void fly_in_real_time(const std::string& tools_mode) {
   for (const char* name : {"A3_LLM_API_KEY", "A3_LLM_API_KEY_FILE", "OPENAI_API_KEY", "A3_LLM_PROVIDER"}) {
     ::unsetenv(name);
   }
-  ScriptedServer s;
+  test::ScriptedServer s("fixed:" + std::to_string(kServerLatency_s));
   rigs::RunOptions o = test::virtual_run("traffic-conflict", "llm-real-time-" + tools_mode);
   o.runtime = rigs::Runtime::kReal;
   o.real_time_factor = kRealTimeFactor;
