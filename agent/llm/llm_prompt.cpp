@@ -185,11 +185,16 @@ std::string turn_prompt(const AgentContext& c, const DialogueLimits& limits, Too
   return out;
 }
 
-std::string correction_prompt(const ToolCatalog& tools, int attempt, const FailedAttempt& failure) {
+std::string failure_text(const FailedAttempt& failure) {
   std::string out = failure.reply.empty() ? "Your previous reply did not arrive or could not be read:\n"
                                           : "Your previous reply could not be used:\n";
   for (const auto& p : failure.problems) out += "- " + p + "\n";
   if (failure.problems.empty()) out += "- (no details)\n";
+  return out;
+}
+
+std::string correction_prompt(const ToolCatalog& tools, int attempt, const FailedAttempt& failure) {
+  std::string out = failure_text(failure);
   out += "\nReply again, for the same turn, following exactly this format.\n" + reply_format_text();
   if (attempt >= 3) out += "\n" + strict_rules(tools);
   return out;

@@ -42,6 +42,8 @@ std::string reply_format_text();
 // how to answer differs between the modes.
 std::string turn_prompt(const AgentContext& context, const DialogueLimits& limits = {},
                         ToolMode mode = ToolMode::kJson);
+// What was wrong with the previous attempt, as both protocols' corrections begin.
+std::string failure_text(const FailedAttempt& failure);
 // The correction sent after a failed attempt, before attempt `attempt` (2 or 3).
 std::string correction_prompt(const ToolCatalog& tools, int attempt, const FailedAttempt& failure);
 

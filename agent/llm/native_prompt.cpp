@@ -120,10 +120,7 @@ std::vector<ChatMessage> history_messages(const AgentContext& c, const ToolCatal
 }
 
 std::string native_correction(const ToolCatalog& tools, int attempt, const FailedAttempt& failure) {
-  std::string out = failure.reply.empty() ? "Your previous reply did not arrive or could not be read:\n"
-                                          : "Your previous reply could not be used:\n";
-  for (const auto& p : failure.problems) out += "- " + p + "\n";
-  if (failure.problems.empty()) out += "- (no details)\n";
+  std::string out = failure_text(failure);
   out += "\nAct again, for the same turn: call the functions of its actions and " + tools.turn_call().name +
          " once with its intent and text.\n";
   if (attempt >= 3) out += "\n" + strict_rules(tools);

@@ -112,6 +112,19 @@ export async function waitForEpisodeWritten(client, timeoutMs = 240000) {
   throw new Error(`the episode was not written within ${timeoutMs} ms`);
 }
 
+// The session both transports run once connected: the tool list and the brief checked, a ping,
+// parcel-delivery flown to its end, the episode written, a ping after it. Returns the calls'
+// log and the text the calls answer once the episode is written.
+export async function flyWholeSession(client) {
+  await checkTools(client);
+  await checkBrief(client);
+  await client.ping();
+  const log = await flyParcelDelivery(client);
+  const ending = await waitForEpisodeWritten(client);
+  await client.ping();
+  return { log, ending };
+}
+
 // `a3rig validate` accepts the episode and it is a success flown by the MCP agent.
 export function checkEpisode(a3rig, episodePath) {
   const run = spawnSync(a3rig, ["validate", episodePath], { encoding: "utf8" });

@@ -38,12 +38,7 @@ async function main() {
     await client.connect(transport);
     mcp.check(transport.sessionId?.length > 0, "the server issued an Mcp-Session-Id");
     mcp.check(transport.protocolVersion === "2025-06-18", `protocol 2025-06-18 negotiated (got ${transport.protocolVersion})`);
-    await mcp.checkTools(client);
-    await mcp.checkBrief(client);
-    await client.ping();
-    const log = await mcp.flyParcelDelivery(client);
-    const ending = await mcp.waitForEpisodeWritten(client);
-    await client.ping();
+    const { log, ending } = await mcp.flyWholeSession(client);
     await transport.terminateSession();
     await client.close();
     const { code } = await exited;

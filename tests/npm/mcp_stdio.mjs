@@ -20,12 +20,7 @@ async function main() {
   const client = new sdk.Client({ name: "a3rig-sdk-test-stdio", version: "1.0.0" });
   await client.connect(transport);
   mcp.check(client.getServerVersion()?.name?.length > 0, "serverInfo has a name");
-  await mcp.checkTools(client);
-  await mcp.checkBrief(client);
-  await client.ping();
-  const log = await mcp.flyParcelDelivery(client);
-  const ending = await mcp.waitForEpisodeWritten(client);
-  await client.ping();
+  const { log, ending } = await mcp.flyWholeSession(client);
   await client.close();
   const episode = mcp.checkEpisode(a3rig, join(out, "episode.json"));
   console.log(`mcp stdio: ${log.length} calls; ${ending}; success ${episode.success}, ${episode.dialogue.length} turns`);
