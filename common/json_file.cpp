@@ -1,6 +1,8 @@
 // JSON input helpers.
 #include "common/json_file.hpp"
 
+#include "common/json_text.hpp"
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -32,12 +34,9 @@ nlohmann::json load_json_file(const std::filesystem::path& path, std::uintmax_t 
   if (!in) throw InputError(path.string() + ": cannot open");
   std::stringstream buffer;
   buffer << in.rdbuf();
-  try {
-    return nlohmann::json::parse(buffer.str());
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(path.string() + ": not valid JSON (byte " + std::to_string(e.byte) +
-                     "): " + e.what());
-  }
+  JsonLimits limits;
+  limits.max_bytes = static_cast<std::size_t>(max_bytes);
+  return parse_json_text(buffer.str(), path.string(), limits);
 }
 
 double require_number(const nlohmann::json& object, const std::string& key,

@@ -58,7 +58,7 @@ TEST_F(JsonFileTest, DirectoryIsNotAFile) {
 
 TEST_F(JsonFileTest, NonJsonFileNamesThePathAndWhere) {
   const auto path = write("broken.json", "{\"a\": 1,\n \"b\": }");
-  expect_input_error([&] { load_json_file(path); }, {path.string(), "not valid JSON", "byte 16"});
+  expect_input_error([&] { load_json_file(path); }, {path.string(), "not valid JSON", "byte 15"});
   const auto text = write("notes.json", "this is not json");
   expect_input_error([&] { load_json_file(text); }, {text.string(), "not valid JSON"});
   const auto empty = write("empty.json", "");
