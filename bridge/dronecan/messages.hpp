@@ -4,6 +4,7 @@
 #include <tuple>
 
 #include "bridge/dronecan/msg/a3_fc.hpp"
+#include "bridge/dronecan/msg/a3_fc_refusal.hpp"
 #include "bridge/dronecan/msg/a3_sim.hpp"
 #include "bridge/dronecan/msg/actuator.hpp"
 #include "bridge/dronecan/msg/ahrs.hpp"
@@ -20,7 +21,7 @@ namespace a3::bridge {
 using MessageTypes =
     std::tuple<NodeStatus, EscRawCommand, EscStatus, AhrsRawImu, MagneticFieldStrength2,
                GnssFix2, StaticPressure, StaticTemperature, BatteryInfo, ActuatorArrayCommand,
-               ArmingStatus, FcCommand, FcStatus, SimClock>;
+               ArmingStatus, FcCommand, FcStatus, FcCommandRefused, SimClock>;
 // Types used only inside others.
 using NestedTypes = std::tuple<Timestamp, GnssEcefPositionVelocity, ActuatorCommand>;
 

@@ -118,6 +118,7 @@ FcStatus sample(FcStatus*) {
 }
 
 SimClock sample(SimClock*) { return {(uint64_t{1} << 55) + 12345}; }  // 56 bits: beyond 2^32 us
+FcCommandRefused sample(FcCommandRefused*) { return {99, 20600, FcCommand::kEmergencyStop, -7, 65535, 4000000000u}; }
 
 // NaN != NaN: compare the JSON forms (NaN is null there) instead of operator==.
 template <class Msg>
