@@ -38,6 +38,17 @@ bool is_image_action(const nlohmann::json& action) {
          !(action.contains("args") && action["args"].is_object() && action["args"].value("store_only", false));
 }
 
+// The actions of a step that fit under kMaxActionsPerTurn with the `already` sent this turn;
+// `refused` counts the rest.
+nlohmann::json capped_actions(const nlohmann::json& decided, std::size_t already, int& refused) {
+  nlohmann::json actions = nlohmann::json::array();
+  if (!decided.is_array()) return actions;
+  const std::size_t room = already >= kMaxActionsPerTurn ? 0 : kMaxActionsPerTurn - already;
+  for (std::size_t i = 0; i < decided.size() && i < room; ++i) actions.push_back(decided[i]);
+  refused += static_cast<int>(decided.size() - actions.size());
+  return actions;
+}
+
 }  // namespace
 
 ConversationNode::ConversationNode(ConversationConfig config, std::unique_ptr<Agent> agent, const ToolCatalog& tools)
@@ -147,7 +158,7 @@ AgentContext ConversationNode::make_context() const {
 }
 
 void ConversationNode::start_turn() {
-  if (finished_) return;
+  if (finished_ || interrupted_) return;
   current_ = Turn{};
   current_.number = static_cast<int>(turns_.size()) + 1;
   current_.speaker = current_.number % 2 == 1 ? "agent" : "user";
@@ -163,8 +174,29 @@ void ConversationNode::start_turn() {
   }
 }
 
+bool ConversationNode::interrupt() {
+  interrupted_ = true;
+  const bool busy = agent_busy_.load();
+  agent_->stop_deciding();
+  return busy;
+}
+
+void ConversationNode::end_interrupted_turn() {
+  in_turn_ = false;
+  deciding_ = false;
+  current_.decided_s = now_s();
+  current_.finished_s = current_.decided_s;
+  {
+    std::lock_guard<std::mutex> lock(turns_mutex_);
+    turns_.push_back(current_);
+  }
+  publish_turn(current_);
+  finish("interrupted");
+}
+
 void ConversationNode::ask_agent() {
   deciding_ = true;
+  agent_busy_ = true;
   if (!config_.agent_runs_in_thread) {
     AgentDecision d;
     try {
@@ -205,7 +237,8 @@ void ConversationNode::record_step(const AgentDecision& d, double charged_s) {
   current_.steps = step_;
   current_.think_time_s += charged_s;
   if (d.intent.empty()) {
-    current_.intent = !d.error.empty() ? "agent_error" : (turn_continues_ ? "" : "no_action");
+    const bool interrupted = d.error.rfind("interrupted", 0) == 0;
+    current_.intent = interrupted ? "interrupted" : !d.error.empty() ? "agent_error" : (turn_continues_ ? "" : "no_action");
   } else {
     current_.intent = d.intent;
   }
@@ -227,9 +260,21 @@ void ConversationNode::record_step(const AgentDecision& d, double charged_s) {
 void ConversationNode::decided(AgentDecision d, double measured_s) {
   const bool in_thread = measured_s >= 0.0;
   const double wait_s = std::max(0.0, d.think_time_s + (in_thread ? 0.0 : d.latency_s));
-  nlohmann::json actions = d.actions.is_array() ? d.actions : nlohmann::json::array();
+  const int refused_before = current_.refused_actions;
+  nlohmann::json actions = capped_actions(d.actions, step_ == 1 ? 0 : current_.actions.size(), current_.refused_actions);
+  if (current_.refused_actions > refused_before) {
+    common::log_warn("conversation", "turn " + std::to_string(current_.number) + ": " +
+                                         std::to_string(current_.refused_actions - refused_before) +
+                                         " actions beyond the cap of " + std::to_string(kMaxActionsPerTurn) +
+                                         " per turn refused");
+  }
   turn_continues_ = d.turn_continues && d.error.empty() && !actions.empty();
   record_step(d, (in_thread ? measured_s : d.latency_s) + d.think_time_s);
+  agent_busy_ = false;
+  if (interrupted_) {
+    end_interrupted_turn();
+    return;
+  }
   if (!d.error.empty()) common::log_warn("conversation", "turn " + std::to_string(current_.number) + ": " + d.error);
   executor_->schedule_after(static_cast<int64_t>(wait_s * 1e6), [this, actions] {
     current_.decided_s = now_s();
@@ -406,6 +451,12 @@ void ConversationNode::publish_turn(const Turn& t) {
                     {"think_time_s", t.think_time_s}, {"usage", t.usage}, {"attempts", t.attempts}, {"text", t.text}};
   if (t.speaker == "agent") detail["_rig"]["steps"] = t.steps;
   if (t.attempt_log.is_array() && !t.attempt_log.empty()) detail["_rig"]["attempt_log"] = t.attempt_log;
+  if (t.refused_actions > 0) {
+    detail["_rig"]["refused_actions"] = {{"count", t.refused_actions},
+                                         {"cap", kMaxActionsPerTurn},
+                                         {"reason", "more than " + std::to_string(kMaxActionsPerTurn) +
+                                                        " actions in one agent turn: not sent"}};
+  }
   a3lcm::episode_event_t ev;
   ev.utime_us = executor_->clock().now_us();
   ev.turn = t.number;

@@ -67,6 +67,10 @@ class ConversationNode final : public common::Node {
   void start(common::Executor& executor, common::Bus& bus) override;
 
   bool finished() const { return finished_.load(); }
+  // Ctrl-C, from any thread: an agent decision in progress is stopped (Agent::stop_deciding),
+  // its turn is recorded as it stands (intent "interrupted", the attempt log so far) and
+  // published on A3_EPISODE, and the dialogue ends. Returns whether a decision was in progress.
+  bool interrupt();
   // Snapshots, safe from any thread.
   std::vector<Turn> turns() const;
   // actions_sent, observations, timeouts, stale_observations (for an earlier turn, arrived
@@ -83,6 +87,8 @@ class ConversationNode final : public common::Node {
   void ask_agent();
   void poll_agent_thread();
   void decided(AgentDecision decision, double extra_delay_s);
+  // After interrupt(): the decided step ends its turn without dispatching, and the dialogue.
+  void end_interrupted_turn();
   // The decision's effect on the turn: intent, text, latency, usage, attempts (all steps).
   void record_step(const AgentDecision& d, double charged_s);
   void start_user_turn();
@@ -146,6 +152,8 @@ class ConversationNode final : public common::Node {
   common::TimerId heartbeat_timer_ = 0;
 
   std::atomic<bool> finished_{false};
+  std::atomic<bool> agent_busy_{false};   // decide() is running (in place or on its thread)
+  std::atomic<bool> interrupted_{false};
   common::CounterSet counter_set_;
   struct Counters {
     explicit Counters(common::CounterSet& s)

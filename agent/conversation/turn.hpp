@@ -5,10 +5,17 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
 namespace a3::agent {
+
+// At most this many actions in one agent turn (all its steps together). The busiest turn of the
+// α³-Bench public corpus has 3 actions (200 episodes); a reply with thousands would flood the
+// emulated link and the vehicle's tool server with work no supervisor asked for. The actions
+// beyond it are not sent: the turn's _rig.refused_actions counts them.
+inline constexpr std::size_t kMaxActionsPerTurn = 16;
 
 struct Turn {
   int number = 0;             // 1-based
@@ -30,6 +37,7 @@ struct Turn {
   nlohmann::json usage = nlohmann::json::object();  // tokens, for LLM agents
   int attempts = 1;
   nlohmann::json attempt_log = nlohmann::json::array();  // AgentDecision::attempt_log
+  int refused_actions = 0;      // decided beyond kMaxActionsPerTurn, not sent
   std::string text;             // what the speaker said, in words
 
   // The α³-Bench turn object.

@@ -4,61 +4,12 @@
 // step), latencies add up, and intent and text are the last step's. Virtual time, fake link.
 #include <gtest/gtest.h>
 
-#include "a3lcm/link_record_t.hpp"
 #include "agent/conversation/conversation_node.hpp"
-#include "agent/link_protocol.hpp"
-#include "common/channels.hpp"
 #include "common/runtime.hpp"
+#include "tests/agent_conversation/fake_link.hpp"
 
 namespace a3::agent {
 namespace {
-
-namespace ch = common::channels;
-
-// Delivers every uplink message 20 ms later (its link record) and answers every action with
-// an "ok" observation naming the tool, 50 ms later. Counts the turn messages.
-class FakeLink final : public common::Node {
- public:
-  std::string name() const override { return "fake_link"; }
-  void start(common::Executor& executor, common::Bus& bus) override {
-    executor_ = &executor;
-    bus_ = &bus;
-    bus.subscribe<a3lcm::link_message_t>(ch::kLinkUpTx, [this](const a3lcm::link_message_t& m, int64_t) { on_up(m); });
-  }
-  int turn_messages = 0;
-
- private:
-  void on_up(const a3lcm::link_message_t& m) {
-    const int64_t now = executor_->clock().now_us();
-    a3lcm::link_record_t r{};
-    r.utime_us = now;
-    r.direction = "up";
-    r.message_id = m.message_id;
-    r.sender = m.sender;
-    r.kind = m.kind;
-    r.outcome = a3lcm::link_record_t::DELIVERED;
-    r.delivery_utime_us = now + 20'000;
-    r.slice = "URLLC";
-    bus_->publish(ch::kLinkRecord, r);
-    if (m.kind == "turn") ++turn_messages;
-    if (m.kind != "mcp_call") return;
-    std::string error;
-    const auto action = decode_action(m, &error);
-    ASSERT_TRUE(action) << error;
-    executor_->schedule_after(50'000, [this, a = *action] {
-      ObservationEnvelope o{a.turn, a.action_index, {{"tool", a.action.value("name", "")}, {"result", {{"status", "ok"}}}}};
-      bus_->publish(ch::kLinkDownRx, encode_observation(o, next_id_++, executor_->clock().now_us(), "tool_server"));
-    });
-  }
-
-  common::Executor* executor_ = nullptr;
-  common::Bus* bus_ = nullptr;
-  int64_t next_id_ = 1;
-};
-
-nlohmann::json mcp(const std::string& name) {
-  return {{"type", "mcp"}, {"name", name}, {"args", nlohmann::json::object()}};
-}
 
 // Step 1: read_telemetry (1 s); step 2: check_geofence (2 s); step 3: ends the turn (0.5 s).
 // Records what it saw of the turn so far at each step.
