@@ -17,7 +17,9 @@
 namespace a3::eval {
 namespace {
 
-constexpr unsigned kParseFlags = rapidjson::kParseInsituFlag | rapidjson::kParseFullPrecisionFlag;
+// Iterative: a file of 100k '[' must not overflow the stack (depth is checked after parsing).
+constexpr unsigned kParseFlags =
+    rapidjson::kParseInsituFlag | rapidjson::kParseFullPrecisionFlag | rapidjson::kParseIterativeFlag;
 
 EpisodeCheck invalid(std::string rule, std::string message) {
   EpisodeCheck check;
@@ -156,6 +158,11 @@ EpisodeCheck EpisodeReader::check_buffer(std::size_t size,
   }
   EpisodeCheck check;
   check.attempts_used = attempts_used_or_one(document);
+  // Before anything that walks the document (valijson, the rules): bounds its depth for them.
+  if (shape_.check(document, check.violations)) {
+    check.status = EpisodeStatus::kInvalid;
+    return check;
+  }
   if (!validator_.is_valid(document)) {
     check.status = EpisodeStatus::kInvalid;
     check.violations = validator_.violations(document);

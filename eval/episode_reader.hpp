@@ -13,6 +13,7 @@
 
 #include "eval/episode_facts.hpp"
 #include "eval/json_schema_validator.hpp"
+#include "eval/json_shape.hpp"
 #include "eval/scoring_profile.hpp"
 #include "eval/violation.hpp"
 
@@ -51,6 +52,7 @@ class EpisodeReader {
   const ScoringProfile& profile_;
   std::uintmax_t max_file_bytes_;
   static constexpr std::size_t kPoolChunkBytes = 256u << 10;
+  JsonShapeChecker shape_;
   std::string buffer_;  // the file's bytes, parsed in place
   std::vector<char> pool_chunk_;
   rapidjson::MemoryPoolAllocator<> pool_;  // the parsed document's memory

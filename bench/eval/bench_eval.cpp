@@ -1,5 +1,5 @@
 // Per-episode cost of each scoring stage on the public α³-Bench episodes: UTF-8 check, parse,
-// schema validation (valijson), semantic rules, fact extraction, pillars, and the whole check.
+// depth and duplicate-key check, schema validation (valijson), semantic rules, fact extraction, pillars, and the whole check.
 // Run: build/bench/bench_eval   (needs ../shared/alphabench or A3_SHARED_DIR)
 #include <benchmark/benchmark.h>
 
@@ -14,6 +14,7 @@
 #include "eval/episode_document.hpp"
 #include "eval/episode_reader.hpp"
 #include "eval/episode_schema.hpp"
+#include "eval/json_shape.hpp"
 #include "eval/pillars.hpp"
 #include "eval/utf8.hpp"
 
@@ -92,6 +93,32 @@ void BM_ParseInPlace(benchmark::State& state) {
   report(state);
 }
 
+// What episode_reader does: iterative parsing cannot overflow the stack on deep input.
+void BM_ParseInPlaceIterative(benchmark::State& state) {
+  if (!need_corpus(state)) return;
+  std::string buffer;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    buffer = episodes()[i++ % episodes().size()];
+    rapidjson::Document d;
+    d.ParseInsitu<rapidjson::kParseFullPrecisionFlag | rapidjson::kParseIterativeFlag>(buffer.data());
+    benchmark::DoNotOptimize(d.IsObject());
+  }
+  report(state);
+}
+
+void BM_DepthAndDuplicateKeys(benchmark::State& state) {
+  if (!need_corpus(state)) return;
+  JsonShapeChecker checker;
+  Violations violations;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    violations.clear();
+    benchmark::DoNotOptimize(checker.check(parsed()[i++ % parsed().size()], violations));
+  }
+  report(state);
+}
+
 void BM_SchemaValidation(benchmark::State& state) {
   if (!need_corpus(state)) return;
   std::size_t i = 0;
@@ -145,6 +172,8 @@ void BM_WholeCheckFromMemory(benchmark::State& state) {
 
 BENCHMARK(BM_Utf8Check);
 BENCHMARK(BM_ParseInPlace);
+BENCHMARK(BM_ParseInPlaceIterative);
+BENCHMARK(BM_DepthAndDuplicateKeys);
 BENCHMARK(BM_SchemaValidation);
 BENCHMARK(BM_SemanticRules);
 BENCHMARK(BM_ExtractFacts);

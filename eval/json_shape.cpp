@@ -1,0 +1,104 @@
+// Depth and duplicate-key checks with an explicit stack; paths are built only for violations.
+#include "eval/json_shape.hpp"
+
+#include <algorithm>
+#include <string>
+
+namespace a3::eval {
+namespace {
+
+std::string_view name_of(const rapidjson::Value::Member& m) {
+  return {m.name.GetString(), m.name.GetStringLength()};
+}
+
+std::string pointer_token(std::string_view key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '~') out += "~0";
+    else if (c == '/') out += "~1";
+    else out += c;
+  }
+  return out;
+}
+
+// Below this many members, comparing every pair is cheaper than sorting.
+constexpr rapidjson::SizeType kPairwiseMembers = 24;
+
+}  // namespace
+
+bool JsonShapeChecker::check(const rapidjson::Value& root, Violations& out) {
+  const std::size_t before = out.size();
+  stack_.clear();
+  if (root.IsObject()) check_keys(root, out);
+  if (root.IsObject() || root.IsArray()) stack_.push_back({&root, 0});
+  while (!stack_.empty()) {
+    Frame& top = stack_.back();
+    const rapidjson::Value* child = nullptr;
+    if (top.container->IsArray()) {
+      if (top.next < top.container->Size()) child = &(*top.container)[top.next];
+    } else if (top.next < top.container->MemberCount()) {
+      child = &(top.container->MemberBegin() + top.next)->value;
+    }
+    if (child == nullptr) {
+      stack_.pop_back();
+      continue;
+    }
+    ++top.next;
+    if (!child->IsObject() && !child->IsArray()) continue;
+    if (static_cast<int>(stack_.size()) >= max_depth_) {
+      out.push_back({current_path(), "json-depth",
+                     "arrays/objects nested deeper than the limit of " + std::to_string(max_depth_)});
+      return true;  // nothing below is looked into
+    }
+    if (child->IsObject()) check_keys(*child, out);
+    stack_.push_back({child, 0});
+  }
+  return out.size() > before;
+}
+
+void JsonShapeChecker::check_keys(const rapidjson::Value& object, Violations& out) {
+  const rapidjson::SizeType n = object.MemberCount();
+  if (n < 2) return;
+  auto report = [&](std::string_view key) {
+    // stack_ holds the object's ancestors, each at the child leading to it.
+    out.push_back({current_path(), "json-duplicate-key",
+                   "duplicate key \"" + std::string(key) + "\" (readers disagree on which value counts)"});
+  };
+  const auto first = object.MemberBegin();
+  if (n <= kPairwiseMembers) {
+    for (rapidjson::SizeType i = 1; i < n; ++i) {
+      const std::string_view key = name_of(first[i]);
+      for (rapidjson::SizeType j = 0; j < i; ++j) {
+        if (name_of(first[j]) != key) continue;
+        // Report each key once: at its second occurrence.
+        bool earlier = false;
+        for (rapidjson::SizeType k = 0; k < j && !earlier; ++k) earlier = name_of(first[k]) == key;
+        if (!earlier) report(key);
+        break;
+      }
+    }
+    return;
+  }
+  keys_.clear();
+  for (auto m = first; m != object.MemberEnd(); ++m) keys_.push_back(name_of(*m));
+  std::sort(keys_.begin(), keys_.end());
+  for (std::size_t i = 1; i < keys_.size(); ++i) {
+    if (keys_[i] == keys_[i - 1] && (i < 2 || keys_[i - 2] != keys_[i])) report(keys_[i]);
+  }
+}
+
+// Each frame names the child it last stepped into (next - 1).
+std::string JsonShapeChecker::current_path() const {
+  std::string path;
+  for (const Frame& f : stack_) {
+    const rapidjson::SizeType index = f.next - 1;
+    if (f.container->IsArray()) {
+      path += "/" + std::to_string(index);
+    } else {
+      path += "/" + pointer_token(name_of(*(f.container->MemberBegin() + index)));
+    }
+  }
+  return path;
+}
+
+}  // namespace a3::eval
