@@ -11,6 +11,7 @@
 #include "bridge/dronecan/messages.hpp"
 #include "bridge/nodes/esc_scaling.hpp"
 #include "bridge/nodes/fc_messages.hpp"
+#include "bridge/nodes/refusal_events.hpp"
 #include "common/channels.hpp"
 #include "common/log.hpp"
 
@@ -42,11 +43,21 @@ BridgeNode::BridgeNode(CanBus& can, BridgeNodeConfig config)
       baro_schedule_(config_.rates.baro_hz),
       temperature_schedule_(config_.rates.temperature_hz),
       mag_schedule_(config_.rates.mag_hz),
-      battery_schedule_(config_.rates.battery_hz) {
+      battery_schedule_(config_.rates.battery_hz),
+      foreign_refusals_(config_.refusal_report_interval_us, [this](uint64_t n, uint64_t total) {
+        publish_safety(safety_event_from_foreign_fc_traffic(
+            {last_foreign_source_, last_foreign_type_, config_.fc_node_id, n, total}, executor_->clock().now_us(),
+            last_p_W_m_));
+      }) {
+  if (config_.fc_node_id < 1 || config_.fc_node_id > 127 || config_.fc_node_id == config_.node_id) {
+    throw std::invalid_argument("bridge node: fc node ID " + std::to_string(config_.fc_node_id) +
+                                " must be 1..127 and not the bridge's own (" + std::to_string(config_.node_id) + ")");
+  }
   config_.state_channel = or_default(config_.state_channel, common::channels::kState);
   config_.actuator_channel = or_default(config_.actuator_channel, common::channels::kActuators);
   config_.command_channel = or_default(config_.command_channel, common::channels::kFcCommand);
   config_.status_channel = or_default(config_.status_channel, common::channels::kFcStatus);
+  config_.safety_channel = or_default(config_.safety_channel, common::channels::kSafety);
 }
 
 BridgeNode::~BridgeNode() { stop(); }
@@ -60,8 +71,16 @@ void BridgeNode::start(common::Executor& executor, common::Bus& bus) {
   if (executor_ != nullptr) throw std::logic_error("bridge node: started twice");
   executor_ = &executor;
   bus_ = &bus;
-  dronecan_.subscribe<EscRawCommand>([this](const EscRawCommand& m, const ReceivedTransfer&) { on_esc(m); });
-  dronecan_.subscribe<FcStatus>([this](const FcStatus& m, const ReceivedTransfer&) { on_status(m); });
+  foreign_refusals_.start(executor);
+  dronecan_.subscribe<EscRawCommand>([this](const EscRawCommand& m, const ReceivedTransfer& t) {
+    if (from_fc(t)) on_esc(m);
+  });
+  dronecan_.subscribe<FcStatus>([this](const FcStatus& m, const ReceivedTransfer& t) {
+    if (from_fc(t)) on_status(m);
+  });
+  dronecan_.subscribe<FcCommandRefused>([this](const FcCommandRefused& m, const ReceivedTransfer& t) {
+    if (from_fc(t)) on_fc_refusal(m);
+  });
   dronecan_.publish_node_status_every(kNodeStatusPeriod_us);
   dronecan_.start(executor);
   bus.subscribe<a3lcm::vehicle_state_t>(config_.state_channel,
@@ -81,6 +100,7 @@ void BridgeNode::stop() {
   if (executor_ == nullptr) return;
   for (const auto id : timers_) executor_->cancel(id);
   timers_.clear();
+  foreign_refusals_.stop();
   dronecan_.stop();
   executor_ = nullptr;
 }
@@ -112,6 +132,7 @@ void BridgeNode::on_state(const a3lcm::vehicle_state_t& s) {
   have_state_ = true;
   last_state_utime_us_ = s.utime_us;
   last_state_rx_us_ = executor_->clock().now_us();
+  for (int i = 0; i < 3; ++i) last_p_W_m_[i] = s.p_W_m[i];
   ++counters_.states;
   if (!have_power_) {
     average_power_W_ = s.power_w;
@@ -203,6 +224,26 @@ void BridgeNode::on_grant(int64_t utime_us) {
 void BridgeNode::on_status(const FcStatus& status) {
   ++counters_.statuses;
   bus_->publish(config_.status_channel, fc_status_from_can(status, executor_->clock().now_us()));
+}
+
+bool BridgeNode::from_fc(const ReceivedTransfer& t) {
+  if (t.header.source_node_id == config_.fc_node_id) return true;
+  last_foreign_source_ = t.header.source_node_id;
+  last_foreign_type_ = t.header.data_type_id;
+  warn(++counters_.rejected_source, "refused " + data_type_text(t.header.data_type_id) + " from CAN node " +
+                                        std::to_string(t.header.source_node_id) + ": not the fc (node " +
+                                        std::to_string(config_.fc_node_id) + ")");
+  foreign_refusals_.record();
+  return false;
+}
+
+void BridgeNode::on_fc_refusal(const FcCommandRefused& report) {
+  publish_safety(safety_event_from_fc_refusal(report, executor_->clock().now_us(), last_p_W_m_));
+}
+
+void BridgeNode::publish_safety(const a3lcm::safety_event_t& event) {
+  ++counters_.refusal_events;
+  bus_->publish(config_.safety_channel, event);
 }
 
 void BridgeNode::update_health() {

@@ -13,6 +13,11 @@
 //     silent, not the bridge.
 //   a3.fc.Status → A3_FC_STATUS (fc_status_t, the refusal reason as its text).
 //   NodeStatus at 1 Hz (WARNING while no state has come for state_timeout_us).
+//   a3.fc.CommandRefused (the fc refused commands from a node that is not a command source) →
+//     A3_SAFETY (safety_event_t "command_refused", source "fc"): the fc never uses LCM.
+// Only the fc (fc_node_id) drives the vehicle: esc.RawCommand, a3.fc.Status and
+// a3.fc.CommandRefused from any other node are refused, counted and reported on A3_SAFETY
+// ("command_refused", source "bridge"), at most one event per report interval.
 // Bad input is counted and logged, never passed on: states with NaN or a non-unit attitude,
 // RawCommands with fewer than 4 rotors; commands with non-finite values are counted and
 // forwarded (the fc refuses them with a reason the ground can see).
@@ -24,13 +29,16 @@
 
 #include "a3lcm/actuator_cmd_t.hpp"
 #include "a3lcm/fc_command_t.hpp"
+#include "a3lcm/safety_event_t.hpp"
 #include "a3lcm/vehicle_state_t.hpp"
 #include "bridge/can/can_bus.hpp"
 #include "bridge/dronecan/msg/a3_fc.hpp"
+#include "bridge/dronecan/msg/a3_fc_refusal.hpp"
 #include "bridge/dronecan/msg/esc.hpp"
 #include "bridge/dronecan/node.hpp"
 #include "bridge/fc/geo.hpp"
 #include "bridge/fc/sensor_model.hpp"
+#include "bridge/nodes/command_sources.hpp"
 #include "bridge/nodes/rate_schedule.hpp"
 #include "bridge/nodes/sensor_frames.hpp"
 #include "common/node.hpp"
@@ -47,7 +55,11 @@ struct SensorRates {
 };
 
 struct BridgeNodeConfig {
-  uint8_t node_id = 20;
+  uint8_t node_id = kDefaultBridgeNodeId;
+  // The flight controller: the only node whose esc.RawCommand, a3.fc.Status and
+  // a3.fc.CommandRefused the bridge takes.
+  uint8_t fc_node_id = kDefaultFcNodeId;
+  int64_t refusal_report_interval_us = 1'000'000;  // at most one own "command_refused" event per interval
   Geodetic home = kDefaultHome;
   SensorNoise noise;
   uint64_t seed = 1;
@@ -57,6 +69,7 @@ struct BridgeNodeConfig {
   std::string actuator_channel;   // default A3_ACTUATORS
   std::string command_channel;    // default A3_FC_CMD
   std::string status_channel;     // default A3_FC_STATUS
+  std::string safety_channel;     // default A3_SAFETY
   // Lockstep (DESIGN.md "Time"): forward each A3_CLOCK grant to the flight controller as an
   // a3.sim.Clock frame, after the sensor frames of that time; on a repeated grant, publish the
   // last A3_ACTUATORS again (the pacer repeats a grant it has no answer to).
@@ -79,7 +92,9 @@ class BridgeNode final : public common::Node {
   // battery, esc_frames (RawCommands turned into A3_ACTUATORS), esc_rejected (fewer than 4
   // rotors), esc_clamped (a negative rotor command, taken as 0), commands (A3_FC_CMD forwarded,
   // heartbeats included), commands_nonfinite, statuses (a3.fc.Status forwarded),
-  // can_publish_failures, clock_grants (lockstep grants forwarded as a3.sim.Clock).
+  // can_publish_failures, clock_grants (lockstep grants forwarded as a3.sim.Clock),
+  // rejected_source (esc.RawCommand, a3.fc.Status or a3.fc.CommandRefused from a node that is not
+  // the fc), refusal_events (command_refused safety events published: the fc's and its own).
   const common::CounterSet& counters() const override { return counter_set_; }
   const DroneCanNode& dronecan() const { return dronecan_; }
 
@@ -89,6 +104,10 @@ class BridgeNode final : public common::Node {
   void on_esc(const EscRawCommand& esc);
   void on_status(const FcStatus& status);
   void on_grant(int64_t utime_us);
+  void on_fc_refusal(const FcCommandRefused& report);
+  // True when a transfer comes from the fc; else counts and reports it.
+  bool from_fc(const ReceivedTransfer& transfer);
+  void publish_safety(const a3lcm::safety_event_t& event);
   void publish_sensors(const a3lcm::vehicle_state_t& state);
   template <class Msg>
   void publish_can(const Msg& msg, uint8_t priority);
@@ -114,6 +133,10 @@ class BridgeNode final : public common::Node {
   bool have_actuator_ = false;
   a3lcm::actuator_cmd_t last_actuator_{};
   int64_t last_grant_us_ = -1;
+  std::array<double, 3> last_p_W_m_{};  // where the vehicle was at the last state
+  uint8_t last_foreign_source_ = 0;
+  uint16_t last_foreign_type_ = 0;
+  RefusalReports foreign_refusals_;
 
   common::CounterSet counter_set_;
   struct Counters {
@@ -123,9 +146,11 @@ class BridgeNode final : public common::Node {
           esc_frames(s.add("esc_frames")), esc_rejected(s.add("esc_rejected")), esc_clamped(s.add("esc_clamped")),
           commands(s.add("commands")), commands_nonfinite(s.add("commands_nonfinite")),
           statuses(s.add("statuses")), can_publish_failures(s.add("can_publish_failures")),
-          clock_grants(s.add("clock_grants")) {}
+          clock_grants(s.add("clock_grants")), rejected_source(s.add("rejected_source")),
+          refusal_events(s.add("refusal_events")) {}
     common::Counter &states, &states_rejected, &imu, &gnss, &baro, &mag, &battery, &esc_frames, &esc_rejected,
-        &esc_clamped, &commands, &commands_nonfinite, &statuses, &can_publish_failures, &clock_grants;
+        &esc_clamped, &commands, &commands_nonfinite, &statuses, &can_publish_failures, &clock_grants,
+        &rejected_source, &refusal_events;
   } counters_{counter_set_};
 };
 

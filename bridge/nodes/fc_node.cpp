@@ -35,7 +35,9 @@ FcNode::FcNode(CanBus& can, FcNodeConfig config)
     : config_(std::move(config)),
       frame_(config_.home),
       fc_(config_.params, config_.estimator_noise),
-      dronecan_(can, DroneCanNodeConfig{config_.node_id, {}, 500'000}) {
+      dronecan_(can, DroneCanNodeConfig{config_.node_id, {}, 500'000}),
+      refusals_(config_.refusal_report_interval_us, [this](uint64_t n, uint64_t total) { report_refusals(n, total); }) {
+  check_command_sources(config_.command_sources, config_.node_id);
   period_us_of(config_.params.control_rate_hz, "control_rate_hz");
   period_us_of(config_.params.status_rate_hz, "status_rate_hz");
   status_copy_ = fc_.status();
@@ -108,10 +110,21 @@ void FcNode::subscribe_sensors() {
 void FcNode::start(common::Executor& executor, common::Bus&) {
   if (executor_ != nullptr) throw std::logic_error("fc node: started twice");
   executor_ = &executor;
+  refusals_.start(executor);
   subscribe_sensors();
-  dronecan_.subscribe<FcCommand>([this](const FcCommand& c, const ReceivedTransfer&) { on_command(c); });
+  dronecan_.subscribe<FcCommand>([this](const FcCommand& c, const ReceivedTransfer& t) {
+    const uint8_t source = t.header.source_node_id;
+    if (!is_command_source(config_.command_sources, source)) {
+      return refuse_source(source, FcCommand::kType.default_dtid, c.command, c.seq);
+    }
+    on_command(c);
+  });
   if (sim_clock_ != nullptr) {
-    dronecan_.subscribe<SimClock>([this](const SimClock& m, const ReceivedTransfer&) {
+    dronecan_.subscribe<SimClock>([this](const SimClock& m, const ReceivedTransfer& t) {
+      const uint8_t source = t.header.source_node_id;
+      if (!is_command_source(config_.command_sources, source)) {
+        return refuse_source(source, SimClock::kType.default_dtid, 0, 0);
+      }
       ++counters_.clock_grants;
       sim_clock_->advance_to(static_cast<int64_t>(m.utime_us));
     });
@@ -132,13 +145,15 @@ void FcNode::start(common::Executor& executor, common::Bus&) {
   }));
   common::log_info("fc", "node " + std::to_string(config_.node_id) + " on " + dronecan_.bus().name() + ": control " +
                              std::to_string(config_.params.control_rate_hz) + " Hz, status " +
-                             std::to_string(config_.params.status_rate_hz) + " Hz");
+                             std::to_string(config_.params.status_rate_hz) + " Hz, commands from node(s) " +
+                             command_sources_text(config_.command_sources));
 }
 
 void FcNode::stop() {
   if (executor_ == nullptr) return;
   for (const auto id : timers_) executor_->cancel(id);
   timers_.clear();
+  refusals_.stop();
   dronecan_.stop();
   executor_ = nullptr;
 }
@@ -173,6 +188,28 @@ void FcNode::on_command(const FcCommand& c) {
     if (run_step) step();
     publish_status();
   });
+}
+
+void FcNode::refuse_source(uint8_t source_node_id, uint16_t data_type_id, uint8_t command, int32_t seq) {
+  const uint64_t n = ++counters_.commands_rejected_source;
+  if (is_power_of_ten(n)) {
+    common::log_warn("fc", "refused data type " + std::to_string(data_type_id) + " (command " +
+                               std::to_string(command) + ") from node " + std::to_string(source_node_id) +
+                               ": not a command source (" + command_sources_text(config_.command_sources) + "); " +
+                               std::to_string(n) + " refused so far");
+  }
+  last_refused_.source_node_id = source_node_id;
+  last_refused_.data_type_id = data_type_id;
+  last_refused_.command = command;
+  last_refused_.seq = seq;
+  refusals_.record();
+}
+
+void FcNode::report_refusals(uint64_t refused_in_report, uint64_t refused_total) {
+  FcCommandRefused report = last_refused_;
+  report.refused_in_report = static_cast<uint16_t>(std::min<uint64_t>(refused_in_report, UINT16_MAX));
+  report.refused_total = static_cast<uint32_t>(std::min<uint64_t>(refused_total, UINT32_MAX));
+  if (dronecan_.publish(report)) ++counters_.refusal_reports;
 }
 
 void FcNode::step() {
