@@ -36,6 +36,7 @@ packages=(
   libcpp-httplib-dev                             # HTTP server for the offline model server
   libgoogle-perftools-dev                        # tcmalloc: the scorer allocates a lot in valijson
   libgtest-dev libgmock-dev libbenchmark-dev     # tests and benchmarks
+  clang libclang-rt-dev                          # libFuzzer + sanitizer runtimes for scripts/fuzz.sh (fuzz/)
   json-schema-test-suite                         # the official JSON Schema test cases
   gnuplot-nox                                    # leaderboard plots (PNG)
   python3 python3-jsonschema                     # the Python reference scorer (cross-check, baseline)

@@ -1,0 +1,39 @@
+// Fuzz target "episode": an episode file's text through the scorer's reader (UTF-8, JSON
+// syntax, schema, failure stub, semantic checks, facts), then the α³ pillars of a valid one
+// under both scoring profiles. Invariant: every pillar and α³ lie in [0, 1].
+#include <string_view>
+
+#include "eval/episode_reader.hpp"
+#include "eval/episode_schema.hpp"
+#include "eval/pillars.hpp"
+#include "fuzz/fuzz_target.hpp"
+
+namespace {
+
+void require_unit_interval(double x, const char* what) { a3::fuzz::require(x >= 0.0 && x <= 1.0, what); }
+
+void score_both_profiles(const a3::eval::EpisodeFacts& facts) {
+  for (const auto& profile : {a3::eval::release_profile(), a3::eval::paper_profile()}) {
+    const a3::eval::Pillars p = a3::eval::score_pillars(facts, profile, profile.optimal_turns);
+    require_unit_interval(p.to, "TO outside [0, 1]");
+    require_unit_interval(p.sp, "SP outside [0, 1]");
+    require_unit_interval(p.tc, "TC outside [0, 1]");
+    require_unit_interval(p.iq, "IQ outside [0, 1]");
+    require_unit_interval(p.nr, "NR outside [0, 1]");
+    require_unit_interval(p.cc, "CC outside [0, 1]");
+    require_unit_interval(p.alpha3, "alpha3 outside [0, 1]");
+  }
+}
+
+}  // namespace
+
+A3_FUZZ_TARGET(episode) {
+  static const a3::eval::JsonSchemaValidator validator(a3::eval::episode_schema_json(), a3::eval::kEpisodeSchemaName);
+  static const a3::eval::ScoringProfile profile = a3::eval::release_profile();
+  static a3::eval::EpisodeReader reader(validator, profile);
+  const a3::eval::EpisodeCheck check =
+      reader.check_text(std::string_view(reinterpret_cast<const char*>(input.data()), input.size()));
+  if (check.status == a3::eval::EpisodeStatus::kValid) score_both_profiles(check.facts);
+  a3::fuzz::require(check.status != a3::eval::EpisodeStatus::kInvalid || !check.violations.empty(),
+                    "an invalid episode without a reason");
+}
