@@ -125,6 +125,11 @@ std::optional<EpisodeFile> CorpusWalker::next() {
     const fs::directory_entry& entry = frame.entries[frame.next++];
     const fs::path path = entry.path();
     std::error_code ec;
+    // Whatever it is (a FIFO, a device, a folder, a dangling or looping link), an entry named
+    // as an episode is one: EpisodeReader::check_file says why it is invalid, without blocking.
+    if (auto parsed = parse_episode_name(path.filename().string())) {
+      return EpisodeFile{path, frame.model, frame.domain, parsed};
+    }
     // The entry's type comes from the folder listing; only symlinks need a stat.
     if (entry.is_directory(ec)) {
       // Symlinked folders are followed (loops are refused in push_directory); depth is capped.
@@ -140,13 +145,7 @@ std::optional<EpisodeFile> CorpusWalker::next() {
       warnings_.push_back(path.string() + ": cannot read: " + ec.message());
       continue;
     }
-    if (!entry.is_regular_file(ec)) continue;
-    auto parsed = parse_episode_name(path.filename().string());
-    if (!parsed) {
-      if (path.extension() == ".json") ++ignored_json_;
-      continue;
-    }
-    return EpisodeFile{path, frame.model, frame.domain, parsed};
+    if (entry.is_regular_file(ec) && path.extension() == ".json") ++ignored_json_;
   }
 }
 

@@ -36,6 +36,8 @@ void attribute_model(EpisodeFile& file, const CorpusOptions& options);
 class CorpusWalker {
  public:
   // roots: folders (searched recursively for sc-XXXX-ep-YY.json) or files (taken as they are).
+  // Every entry named sc-XXXX-ep-YY.json is returned whatever its type (a folder so named is
+  // not searched): a FIFO, device, folder or broken link is an invalid episode file, counted.
   // Throws std::invalid_argument for a root that does not exist.
   CorpusWalker(std::vector<std::filesystem::path> roots, CorpusOptions options);
 

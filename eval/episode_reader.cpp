@@ -21,6 +21,14 @@ namespace {
 constexpr unsigned kParseFlags =
     rapidjson::kParseInsituFlag | rapidjson::kParseFullPrecisionFlag | rapidjson::kParseIterativeFlag;
 
+// Why a folder entry that is not a regular file (nor a pipe) is no episode file.
+std::string not_a_file_reason(mode_t mode) {
+  if (S_ISDIR(mode)) return "is a folder, not an episode file";
+  if (S_ISCHR(mode) || S_ISBLK(mode)) return "is a device, not a regular file: not read";
+  if (S_ISSOCK(mode)) return "is a socket, not a regular file: not read";
+  return "cannot stat: " + std::string(std::strerror(errno));
+}
+
 EpisodeCheck invalid(std::string rule, std::string message) {
   EpisodeCheck check;
   check.status = EpisodeStatus::kInvalid;
@@ -68,14 +76,17 @@ EpisodeReader::EpisodeReader(const JsonSchemaValidator& validator, const Scoring
       pool_(pool_chunk_.data(), pool_chunk_.size()) {}
 
 EpisodeCheck EpisodeReader::check_file(const std::filesystem::path& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  // O_NONBLOCK: opening a FIFO nobody writes to must not wait for a writer; then blocking reads.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY);
   if (fd < 0) return invalid("file-read", std::string("cannot open: ") + std::strerror(errno));
   struct stat info {};
-  if (::fstat(fd, &info) != 0 || S_ISDIR(info.st_mode)) {
+  if (::fstat(fd, &info) != 0 || !(S_ISREG(info.st_mode) || S_ISFIFO(info.st_mode))) {
     ::close(fd);
-    return invalid("file-read", S_ISDIR(info.st_mode) ? "is a folder" : "cannot stat");
+    return invalid("file-read", not_a_file_reason(info.st_mode));
   }
-  // Regular files are read in one go; pipes (/dev/stdin) until their end, within the limit.
+  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+  // Regular files are read in one go; pipes (/dev/stdin, a FIFO) until their end (at once when
+  // no one writes), within the limit.
   const bool regular = S_ISREG(info.st_mode);
   const auto size = static_cast<std::uintmax_t>(info.st_size);
   if (regular && size > max_file_bytes_) {
@@ -117,7 +128,11 @@ EpisodeCheck EpisodeReader::check_file(const std::filesystem::path& path) {
     return too_big(got);
   }
   ::close(fd);
-  return check_buffer(got, [&path] {
+  if (!regular && got == 0) return invalid("file-read", "a FIFO or pipe with nothing written to it (no writer)");
+  // A pipe cannot be read twice: keep its text for the error message of a syntax error.
+  const std::string piped = regular ? std::string() : std::string(buffer_.data(), got);
+  return check_buffer(got, [&path, &piped, regular] {
+    if (!regular) return piped;
     std::ifstream in(path, std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   });

@@ -195,7 +195,7 @@ void build_corpus(const TempTree& tree, bool reverse = true) {
       "runs/anthropic/claude-haiku-4.5/uav/sc-0001-ep-01.json",
       "runs/anthropic/claude-haiku-4.5/maritime/sc-0005-ep-01.json",
       "runs/anthropic/claude-haiku-4.5/maritime/sc-0005-ep-01.json.json",  // ignored .json
-      // A folder that looks like an episode file is searched, not returned.
+      // A folder that looks like an episode file is returned (an invalid entry), not searched.
       "runs/google/gemini-3-pro-preview/uav/sc-0007-ep-01.json/sc-0008-ep-01.json",
   };
   if (reverse) std::reverse(files.begin(), files.end());
@@ -212,7 +212,7 @@ TEST(CorpusWalker, WalksNestedFoldersInSortedOrderWithAttribution) {
   const std::vector<std::string> expected = {
       "runs/anthropic/claude-haiku-4.5/maritime/sc-0005-ep-01.json",
       "runs/anthropic/claude-haiku-4.5/uav/sc-0001-ep-01.json",
-      "runs/google/gemini-3-pro-preview/uav/sc-0007-ep-01.json/sc-0008-ep-01.json",
+      "runs/google/gemini-3-pro-preview/uav/sc-0007-ep-01.json",  // a folder: an (invalid) entry, not searched
       "runs/openai/gpt-5.1-chat/uav/sc-0001-ep-01.json",
       "runs/openai/gpt-5.1-chat/uav/sc-0001-ep-02.json",
       "runs/openai/gpt-5.1-chat/uav/sc-0002-ep-01.json",
@@ -224,9 +224,8 @@ TEST(CorpusWalker, WalksNestedFoldersInSortedOrderWithAttribution) {
   EXPECT_EQ(files[0].model, "anthropic/claude-haiku-4.5");
   EXPECT_EQ(files[0].domain, "maritime");
   EXPECT_EQ(files[1].domain, "uav");
-  // One level deeper: the last three folders are model/domain/<the folder named like a file>.
-  EXPECT_EQ(files[2].model, "gemini-3-pro-preview/uav");
-  EXPECT_EQ(files[2].domain, "sc-0007-ep-01.json");
+  EXPECT_EQ(files[2].model, "google/gemini-3-pro-preview");
+  EXPECT_EQ(files[2].domain, "uav");
   for (std::size_t i = 3; i < files.size(); ++i) {
     EXPECT_EQ(files[i].model, "openai/gpt-5.1-chat") << files[i].path;
     EXPECT_EQ(files[i].domain, "uav") << files[i].path;
@@ -343,17 +342,20 @@ TEST(CorpusWalker, FolderSymlinkLoopsEndWithAWarning) {
   }
 }
 
+// A dangling link named like an episode is an episode entry (the reader finds it invalid,
+// tests/eval/test_corpus_faults.cpp); any other dangling link is reported.
 TEST(CorpusWalker, ReportsADanglingSymlink) {
   TempTree tree;
   tree.file("p/m/uav/sc-0001-ep-01.json");
   fs::create_symlink(tree.root() / "gone.json", tree.root() / "p/m/uav/sc-0002-ep-01.json");
+  fs::create_symlink(tree.root() / "gone", tree.root() / "p/m/uav/notes");
   CorpusWalker walker({tree.root()}, {});
   const auto files = walk_all(walker);
-  ASSERT_EQ(files.size(), 1u);
+  ASSERT_EQ(files.size(), 2u);
   EXPECT_EQ(files[0].path.filename(), "sc-0001-ep-01.json");
+  EXPECT_EQ(files[1].path.filename(), "sc-0002-ep-01.json");
   ASSERT_EQ(walker.warnings().size(), 1u);
-  EXPECT_NE(walker.warnings()[0].find("sc-0002-ep-01.json: cannot read"), std::string::npos)
-      << walker.warnings()[0];
+  EXPECT_NE(walker.warnings()[0].find("notes: cannot read"), std::string::npos) << walker.warnings()[0];
 }
 
 // An unreadable folder is reported, not silently taken for an empty one. Root reads every
