@@ -1,0 +1,23 @@
+// Checks of a request's head that need no route: whether its body is announced in a way the
+// server accepts (Content-Length present, well formed, within the limit), and whether it
+// carries the bearer key.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+
+#include "agent/http/http_limits.hpp"
+
+namespace a3::agent::http {
+
+// For POST, PUT and PATCH: 411 without Content-Length (or with Transfer-Encoding: bodies must
+// announce their length), 400 for a Content-Length that is not one decimal number (or several
+// that differ), 413 above `max_body_bytes`. Other methods: 400 only for a malformed length.
+std::optional<HttpRefusal> content_length_refusal(const httplib::Request& request, std::size_t max_body_bytes);
+
+// True when the request has exactly one Authorization header whose whole value, every byte
+// (NUL included), is "Bearer " + key. Compared in constant time for a given length.
+bool bearer_key_matches(const httplib::Request& request, const std::string& key);
+
+}  // namespace a3::agent::http
