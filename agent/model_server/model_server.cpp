@@ -12,6 +12,8 @@
 #include <ctime>
 #include <stdexcept>
 
+#include "agent/http/guarded_server.hpp"
+#include "agent/http/request_checks.hpp"
 #include "agent/model_server/reply_shaping.hpp"
 #include "agent/model_server/request_body.hpp"
 
@@ -67,12 +69,15 @@ int64_t usage_count(const json& usage, const char* key) {
   return it->is_number_float() ? static_cast<int64_t>(it->get<double>()) : it->get<int64_t>();
 }
 
-// Compares without stopping at the first difference (no timing hint about the key's characters).
-bool constant_time_equal(const std::string& a, const std::string& b) {
-  if (a.size() != b.size()) return false;
-  unsigned char diff = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) diff |= static_cast<unsigned char>(a[i] ^ b[i]);
-  return diff == 0;
+// The OpenAI error code of a refusal before any route (413 has its default).
+std::optional<std::string> refusal_code(int status) {
+  switch (status) {
+    case 400: return "invalid_content_length";
+    case 408: return "request_timeout";
+    case 411: return "length_required";
+    case 503: return "server_busy";
+    default: return std::nullopt;
+  }
 }
 
 }  // namespace
@@ -118,7 +123,7 @@ ModelServer::ModelServer(std::unique_ptr<ModelResponder> responder, ModelServerO
     throw std::invalid_argument("retry-after: must be >= 0 s");
   }
   if (options_.max_concurrency < 0) throw std::invalid_argument("max concurrency: must be >= 0 (0: no limit)");
-  if (options_.threads < 1) throw std::invalid_argument("threads: must be >= 1");
+  http::check_http_limits(options_.http_limits);
   if (!options_.require_key_env.empty()) {
     const char* key = std::getenv(options_.require_key_env.c_str());
     if (key == nullptr || *key == '\0') {
@@ -152,11 +157,7 @@ void ModelServer::log(const std::string& line) {
 }
 
 bool ModelServer::authorized(const httplib::Request& req) const {
-  if (required_key_.empty()) return true;
-  const std::string header = req.get_header_value("Authorization");
-  const std::string prefix = "Bearer ";
-  if (header.rfind(prefix, 0) != 0) return false;
-  return constant_time_equal(header.substr(prefix.size()), required_key_);
+  return required_key_.empty() || http::bearer_key_matches(req, required_key_);
 }
 
 bool ModelServer::wait_or_stop(double seconds) {
@@ -166,12 +167,13 @@ bool ModelServer::wait_or_stop(double seconds) {
 
 void ModelServer::start() {
   if (http_) throw std::logic_error("model server: already started");
-  http_ = std::make_unique<httplib::Server>();
-  const int threads = options_.threads;
-  http_->new_task_queue = [threads] { return new httplib::ThreadPool(static_cast<std::size_t>(threads)); };
+  http_ = std::make_unique<http::GuardedServer>(
+      options_.http_limits, options_.max_request_bytes,
+      [this](const httplib::Request& req, httplib::Response& res, const http::HttpRefusal& refusal) {
+        send_refusal(req, res, refusal);
+      });
   http_->set_keep_alive_timeout(2);
   http_->set_keep_alive_max_count(1000);
-  http_->set_payload_max_length(options_.max_request_bytes);
   http_->set_tcp_nodelay(true);
   // The content-reader form of Post: httplib then leaves the body to us (no form parsing, whose
   // own 8 KiB limit answered 413 to form bodies).
@@ -182,18 +184,7 @@ void ModelServer::start() {
   http_->set_error_handler(httplib::Server::HandlerWithResponse([this](const httplib::Request& req,
                                                                         httplib::Response& res) {
     if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      ++stats_.requests;
-      ++stats_.bad_requests;
-    }
-    const std::string message = res.status == 413 ? "request body larger than " +
-                                                        std::to_string(options_.max_request_bytes) + " bytes"
-                                                  : "no route for " + req.method + " " + req.path +
-                                                        " (this server has POST /v1/chat/completions, GET /v1/models "
-                                                        "and GET /v1/models/{id})";
-    set_error(res, {res.status, message, std::nullopt, std::nullopt});
-    log(req.method + " " + req.path + " " + std::to_string(res.status) + " " + message);
+    send_unrouted(req, res);
     return httplib::Server::HandlerResponse::Handled;
   }));
   http_->set_exception_handler([this](const httplib::Request& req, httplib::Response& res, std::exception_ptr ep) {
@@ -252,6 +243,22 @@ void ModelServer::send_error(httplib::Response& res, const ApiError& error, doub
   log(what + " " + std::to_string(error.status) + " " + error.message);
 }
 
+void ModelServer::send_refusal(const httplib::Request& req, httplib::Response& res, const http::HttpRefusal& refusal) {
+  const std::string what = req.method.empty() ? "(request head)" : req.method + " " + req.path;
+  send_error(res, {refusal.status, refusal.message, std::nullopt, refusal_code(refusal.status)}, refusal.retry_after_s, what,
+             refusal.status == 503 ? &ModelServerStats::refused_busy : &ModelServerStats::bad_requests);
+}
+
+void ModelServer::send_unrouted(const httplib::Request& req, httplib::Response& res) {
+  const std::string route = req.method + " " + req.path;
+  const std::string message =
+      res.status == 404 ? "no route for " + route +
+                              " (this server has POST /v1/chat/completions, GET /v1/models and GET /v1/models/{id})"
+      : res.status == 413 ? "request body larger than " + std::to_string(options_.max_request_bytes) + " bytes"
+                          : "malformed request: " + route + " could not be read (status " + std::to_string(res.status) + ")";
+  send_error(res, {res.status, message, std::nullopt, std::nullopt}, 0.0, route, &ModelServerStats::bad_requests);
+}
+
 void ModelServer::handle_models(const httplib::Request& req, httplib::Response& res) {
   if (!authorized(req)) {
     send_error(res, {401, "missing or wrong API key: send Authorization: Bearer <key>", std::nullopt, std::nullopt}, 0.0,
@@ -300,8 +307,8 @@ std::optional<ApiError> ModelServer::admit_chat(const httplib::Request& req, con
     return true;
   });
   if (!read) {
-    return ApiError{413, "request body larger than " + std::to_string(options_.max_request_bytes) + " bytes, or cut short",
-                    std::nullopt, std::nullopt};
+    return ApiError{400, "request body cut short: fewer bytes arrived than its Content-Length announced", std::nullopt,
+                    std::nullopt};
   }
   if (auto e = parse_json_body(body, media, request)) return e;
   return chat_request_error(request);

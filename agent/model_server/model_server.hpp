@@ -10,8 +10,10 @@
 // the latency model's draw is the total time; the first chunk (the headers and the role delta)
 // comes after kFirstChunkShare of it, and the remaining chunks are spread evenly over the rest,
 // the last one at the full draw. stop() ends waiting answers and streams at once.
-// Requests are handled concurrently by a pool of worker threads; the responder is called under a
-// lock (responders need not be thread-safe), the latency waits are not.
+// Each connection is served on a thread of its own, up to options.http_limits.max_connections (503
+// beyond); a request's head and body must arrive within their deadlines (408), its body must come
+// with a Content-Length (411; 400 malformed; 413 too large): agent/http/guarded_server.hpp. The
+// responder is called under a lock (responders need not be thread-safe), the latency waits are not.
 #pragma once
 
 #include <atomic>
@@ -28,6 +30,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "agent/http/http_limits.hpp"
 #include "agent/model_server/latency_model.hpp"
 #include "agent/model_server/model_responder.hpp"
 #include "common/rng.hpp"
@@ -42,6 +45,10 @@ class ContentReader;
 struct Request;
 struct Response;
 }  // namespace httplib
+
+namespace a3::agent::http {
+class GuardedServer;
+}  // namespace a3::agent::http
 
 namespace a3::agent::model_server {
 
@@ -58,7 +65,7 @@ struct ModelServerOptions {
   int max_concurrency = 0;           // chat requests answered at once; beyond: 429 (0: no limit)
   std::string require_key_env;       // an environment variable holding the key clients must send
   std::vector<std::string> model_ids;  // GET /v1/models lists these (default: the responder's name)
-  int threads = 16;                  // worker threads: connections served at once
+  http::HttpLimits http_limits;      // connections at once (a thread each), head and body deadlines
   bool quiet = false;                // no line per request
   std::size_t max_request_bytes = 32u << 20;
 };
@@ -66,10 +73,10 @@ struct ModelServerOptions {
 struct ModelServerStats {
   uint64_t requests = 0;           // every HTTP request
   uint64_t answered = 0;           // chat completions answered with 200
-  uint64_t bad_requests = 0;       // 400, 404, 413, 415
+  uint64_t bad_requests = 0;       // 400, 404, 408, 411, 413, 415
   uint64_t unauthorized = 0;       // 401
   uint64_t injected_failures = 0;  // --fail-rate / --fail-first
-  uint64_t refused_busy = 0;       // --max-concurrency
+  uint64_t refused_busy = 0;       // --max-concurrency (429), --max-connections (503)
   uint64_t responder_errors = 0;   // 500: the responder failed
   double latency_applied_s = 0.0;  // sum over answered requests
   int64_t prompt_tokens = 0;
@@ -113,6 +120,10 @@ class ModelServer {
   void handle_chat(const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader);
   void handle_models(const httplib::Request& req, httplib::Response& res);
   void handle_model(const httplib::Request& req, httplib::Response& res);
+  // The OpenAI error for a request refused before its route (408, 411, 400, 413, 503).
+  void send_refusal(const httplib::Request& req, httplib::Response& res, const http::HttpRefusal& refusal);
+  // The OpenAI error for what httplib answered on its own (404 no route, 400 unreadable).
+  void send_unrouted(const httplib::Request& req, httplib::Response& res);
   bool authorized(const httplib::Request& req) const;
   // The 401 / 413 / 415 / 400 that refuses the request, else nothing (`request` is filled).
   std::optional<ApiError> admit_chat(const httplib::Request& req, const httplib::ContentReader& reader,
@@ -154,7 +165,7 @@ class ModelServer {
   LatencyModel latency_;
   LogLine log_;
   std::string required_key_;
-  std::unique_ptr<httplib::Server> http_;
+  std::unique_ptr<http::GuardedServer> http_;
   std::thread thread_;
   int port_ = 0;
 

@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
   o.port = 0;
   o.quiet = true;
   o.latency = "fixed:0";
-  o.threads = std::max(16, clients + 2);
+  o.http_limits.max_connections = std::max(16, clients + 2);
   std::string content = R"({"intent":"hold position","actions":[]})";
   content.resize(static_cast<std::size_t>(std::max(reply_bytes, 2)), ' ');
   ms::ModelServer server(std::make_unique<ms::ReplyFileResponder>(std::vector<std::string>{content}), o);

@@ -19,6 +19,7 @@
 #include "agent/model_server/reply_file_responder.hpp"
 #include "agent/model_server/scripted_responder.hpp"
 #include "rigs/cli/command_registry.hpp"
+#include "rigs/cli/http_limit_flags.hpp"
 #include "rigs/cli/signal_stop.hpp"
 
 namespace a3::rigs {
@@ -186,7 +187,9 @@ A3_REGISTER_COMMAND("50-serve-model", [](CLI::App& app) {
       "(text, json_object, json_schema), n (1-8) and stream: true (server-sent chat.completion.chunk events, usage "
       "with stream_options.include_usage; the first chunk after half the latency, the rest spread over the other "
       "half). What it cannot honour (logprobs, audio, other tool types, ...) is a 400 naming the field; a body "
-      "that is not JSON is a 415. Errors are OpenAI's {\"error\": {message, type, param, code}}. Point a client "
+      "that is not JSON is a 415; one without Content-Length a 411, a malformed one a 400, one over 32 MiB a 413; a "
+      "request whose head or body comes too late a 408 (--header-timeout, --body-timeout); a connection beyond "
+      "--max-connections a 503. Errors are OpenAI's {\"error\": {message, type, param, code}}. Point a client "
       "at http://HOST:PORT/v1 (A3_LLM_BASE_URL). Stops on Ctrl-C or SIGTERM. Exit status: 0 stopped, 1 cannot "
       "listen, 2 bad usage.");
   ms::ModelServerOptions& o = args->server;
@@ -223,8 +226,7 @@ A3_REGISTER_COMMAND("50-serve-model", [](CLI::App& app) {
   cmd->add_option("--model-id", o.model_ids,
                   "model ids GET /v1/models lists and GET /v1/models/{id} knows (repeatable; default the responder's "
                   "name)");
-  cmd->add_option("--threads", o.threads, "worker threads: connections served at once (default 16)")
-      ->check(CLI::Range(1, 1024));
+  add_http_limit_flags(*cmd, o.http_limits);
   cmd->add_option("--ready-file", args->ready_file,
                   "once listening, write the port to this file (removed on stop), for scripts to wait on");
   cmd->add_flag("-q,--quiet", o.quiet, "no line per request");
