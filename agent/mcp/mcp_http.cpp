@@ -1,11 +1,14 @@
 // MCP's Streamable HTTP transport (see mcp_http.hpp).
 #include "agent/mcp/mcp_http.hpp"
 
+#include "agent/http/guarded_server.hpp"
 #include "agent/mcp/jsonrpc.hpp"
+#include "common/json_text.hpp"
 
 #include <httplib.h>
 
 #include <chrono>
+#include <cmath>
 #include <deque>
 #include <optional>
 #include <random>
@@ -18,6 +21,7 @@ namespace {
 using nlohmann::json;
 constexpr auto kStopPoll = std::chrono::milliseconds(100);
 constexpr size_t kMaxBodyBytes = 8u << 20;  // a JSON-RPC message to a vehicle is a few kB
+constexpr int kMaxMessageDepth = 64;        // nesting of one JSON-RPC message (or batch)
 
 bool is_final(const json& message) { return message.is_array() || jsonrpc::is_response(message); }
 
@@ -111,10 +115,23 @@ void answer_preflight(const httplib::Request& request, httplib::Response& respon
   response.set_header("Access-Control-Max-Age", "600");
 }
 
+// A refusal before any route (408, 411, 400, 413, 503) as a JSON-RPC error without an id.
+void refuse_unrouted(const httplib::Request& request, httplib::Response& response, const http::HttpRefusal& refusal) {
+  refuse(response, refusal.status, refusal.status == 503 ? jsonrpc::kInternalError : jsonrpc::kInvalidRequest,
+         refusal.message);
+  if (refusal.retry_after_s > 0.0) {
+    response.set_header("Retry-After", std::to_string(static_cast<long>(std::ceil(refusal.retry_after_s))));
+  }
+  allow_local_origin(request, response);
+}
+
 }  // namespace
 
 McpHttpTransport::McpHttpTransport(McpRig& rig, McpServerOptions options, McpLog log)
-    : rig_(rig), options_(std::move(options)), log_(std::move(log)), server_(std::make_unique<httplib::Server>()) {
+    : rig_(rig),
+      options_(std::move(options)),
+      log_(std::move(log)),
+      server_(std::make_unique<http::GuardedServer>(options_.http_limits, kMaxBodyBytes, refuse_unrouted)) {
   server_->set_tcp_nodelay(true);
   // SO_REUSEADDR only: httplib's default SO_REUSEPORT would let a second server share the port.
   server_->set_socket_options([](socket_t sock) {
@@ -122,7 +139,6 @@ McpHttpTransport::McpHttpTransport(McpRig& rig, McpServerOptions options, McpLog
     ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
   });
   server_->set_keep_alive_timeout(1);
-  server_->set_payload_max_length(kMaxBodyBytes);
   const std::string& path = options_.http_path;
   server_->Post(path, [this](const httplib::Request& q, httplib::Response& r) { on_post(q, r); });
   server_->Delete(path, [this](const httplib::Request& q, httplib::Response& r) { on_delete(q, r); });
@@ -201,14 +217,15 @@ void McpHttpTransport::on_post(const httplib::Request& request, httplib::Respons
     refuse(response, 406, jsonrpc::kInvalidRequest, "not acceptable: Accept must allow application/json or text/event-stream");
     return;
   }
-  const json message = json::parse(request.body, nullptr, false);
-  if (message.is_discarded()) {
-    refuse(response, 400, jsonrpc::kParseError, "parse error: the POST body is not valid JSON");
+  std::string problem;
+  const auto message = common::try_parse_json_text(request.body, &problem, {kMaxBodyBytes, kMaxMessageDepth});
+  if (!message) {
+    refuse(response, 400, jsonrpc::kParseError, "parse error: the POST body is not valid JSON: " + problem);
     return;
   }
-  if (McpProtocol::is_initialize(message)) return open_session(message, response);
+  if (McpProtocol::is_initialize(*message)) return open_session(*message, response);
   if (const auto protocol = admit_session(request, response))
-    answer(protocol, message, McpProtocol::wants_progress(message) && accepts_event_stream(request), response);
+    answer(protocol, *message, McpProtocol::wants_progress(*message) && accepts_event_stream(request), response);
 }
 
 void McpHttpTransport::open_session(const json& message, httplib::Response& response) {

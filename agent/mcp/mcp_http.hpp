@@ -5,7 +5,11 @@
 // initialize response and required afterwards (400 without, 404 unknown). The MCP-Protocol-Version
 // header must be a supported revision when present (400 otherwise); an Origin that is not local
 // is refused (403); a local one gets CORS headers (and OPTIONS preflights are answered), so a
-// browser page on localhost can be a client. Binds 127.0.0.1 unless told otherwise.
+// browser page on localhost can be a client. Binds 127.0.0.1 unless told otherwise. Abusive
+// clients are held off by http::GuardedServer (options.http_limits): a thread per connection up
+// to a limit (503 beyond), head and body deadlines (408), Content-Length required (411; 400
+// malformed; 413 over 8 MiB); those refusals are JSON-RPC errors without an id. A body that is
+// not JSON (too deep, duplicate keys, bad UTF-8 included) is a 400 with the parse error -32700.
 #pragma once
 
 #include "agent/mcp/mcp_protocol.hpp"
@@ -23,6 +27,10 @@ class Server;
 struct Request;
 struct Response;
 }  // namespace httplib
+
+namespace a3::agent::http {
+class GuardedServer;
+}  // namespace a3::agent::http
 
 namespace a3::agent::mcp {
 
@@ -54,7 +62,7 @@ class McpHttpTransport {
   McpRig& rig_;
   McpServerOptions options_;
   McpLog log_;
-  std::unique_ptr<httplib::Server> server_;
+  std::unique_ptr<http::GuardedServer> server_;
   std::thread listen_thread_;
   std::mutex mutex_;
   std::condition_variable done_cv_;

@@ -5,6 +5,7 @@
 // protocol session and the transport it runs on. Diagnostics go to options.log, never stdout.
 #pragma once
 
+#include "agent/http/http_limits.hpp"
 #include "agent/mcp/mcp_rig.hpp"
 
 #include <functional>
@@ -18,6 +19,7 @@ struct McpServerOptions {
   std::string http_host = "127.0.0.1";   // loopback by default
   int http_port = 0;                     // 0: any free port
   std::string http_path = "/mcp";
+  http::HttpLimits http_limits;          // connections at once, request head and body deadlines
   std::function<void(const std::string&)> log;  // diagnostics (stderr by default; never stdout)
 };
 

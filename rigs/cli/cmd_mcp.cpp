@@ -11,9 +11,11 @@
 #include <memory>
 #include <stdexcept>
 #include <thread>
+#include <vector>
 
 #include "agent/mcp/mcp_server.hpp"
 #include "rigs/cli/command_registry.hpp"
+#include "rigs/cli/http_limit_flags.hpp"
 #include "rigs/cli/scenario_run_flags.hpp"
 #include "rigs/cli/signal_stop.hpp"
 #include "rigs/core/mcp_run.hpp"
@@ -26,6 +28,8 @@ namespace {
 struct McpArgs {
   ScenarioRunFlags flags;
   std::string http;  // "" : stdio; else HOST:PORT
+  agent::http::HttpLimits http_limits;
+  std::vector<CLI::Option*> http_limit_flags;
 };
 
 // "127.0.0.1:8765" -> host, port (0: any free port). Throws naming the bad part.
@@ -82,6 +86,10 @@ int serve(McpArgs& a) {
   agent::mcp::McpServerOptions server_options;
   server_options.log = to_stderr;
   if (!a.http.empty()) parse_http(a.http, server_options);
+  for (const CLI::Option* flag : a.http_limit_flags) {
+    if (flag->count() > 0 && a.http.empty()) throw std::invalid_argument(flag->get_name() + ": applies to --http only");
+  }
+  server_options.http_limits = a.http_limits;
   agent::mcp::McpServer server(*agent, server_options);
   to_stderr("a3rig mcp: scenario " + scenario.name + " (" + scenario.source + "), think time " + o.think_time + ", " +
             (o.runtime == Runtime::kVirtual ? "virtual time" : "real time") + ", seed " + std::to_string(o.seed) +
@@ -142,7 +150,10 @@ A3_REGISTER_COMMAND("12-mcp", [](CLI::App& app) {
       "episode written).");
   add_scenario_run_flags(*cmd, args->flags);
   cmd->add_option("--http", args->http,
-                  "serve Streamable HTTP on HOST:PORT (e.g. 127.0.0.1:8765; endpoint /mcp) instead of stdio");
+                  "serve Streamable HTTP on HOST:PORT (e.g. 127.0.0.1:8765; endpoint /mcp) instead of stdio; a POST "
+                  "without Content-Length is a 411, a malformed one a 400, one over 8 MiB a 413, a request whose head "
+                  "or body comes too late a 408, a connection beyond --max-connections a 503 (JSON-RPC errors)");
+  args->http_limit_flags = add_http_limit_flags(*cmd, args->http_limits);
   cmd->callback([args] { command_exit_status() = serve(*args); });
 });
 
