@@ -7,6 +7,7 @@
 #include <sys/eventfd.h>
 #include <sys/file.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <sys/un.h>
 #include <unistd.h>
 
@@ -56,7 +57,64 @@ void tune_peer_socket(int fd) {
   ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &bytes, sizeof bytes);
 }
 
+// The bus's lock file, opened and locked; -1 with errno set when it cannot be had. A lock file
+// removed (with its folder) by the last member leaving while we waited for it is not the bus's
+// any more: that attempt fails with ESTALE, and the caller tries again.
+int lock_bus_folder(const std::filesystem::path& lock_path, bool create) {
+  const int fd = ::open(lock_path.c_str(), O_RDWR | O_CLOEXEC | (create ? O_CREAT : 0), 0600);
+  if (fd < 0) return -1;
+  ::flock(fd, LOCK_EX);
+  struct stat held {}, on_disk {};
+  if (::fstat(fd, &held) != 0 || ::stat(lock_path.c_str(), &on_disk) != 0 || held.st_ino != on_disk.st_ino ||
+      held.st_dev != on_disk.st_dev) {
+    ::close(fd);
+    errno = ESTALE;
+    return -1;
+  }
+  return fd;
+}
+
+void unlock_bus_folder(int lock_fd) {
+  ::flock(lock_fd, LOCK_UN);
+  ::close(lock_fd);
+}
+
+// With the bus's lock held: removes the socket files nobody listens on; true when a member is
+// still there.
+bool remove_stale_members(const std::filesystem::path& directory) {
+  bool members = false;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(directory, ec)) {
+    if (entry.path().extension() != ".sock") continue;
+    const int fd = connect_member(entry.path());
+    if (fd < 0) {
+      ::unlink(entry.path().c_str());
+      continue;
+    }
+    ::close(fd);
+    members = true;
+  }
+  return members;
+}
+
 }  // namespace
+
+bool remove_userspace_can_bus_if_unused(const std::filesystem::path& directory) {
+  const std::filesystem::path lock_path = directory / ".lock";
+  const int lock_fd = lock_bus_folder(lock_path, false);
+  if (lock_fd < 0) {
+    // No lock file: the folder is gone, or holds nothing of a bus (a crash before the first join).
+    ::rmdir(directory.c_str());
+    return !std::filesystem::exists(directory);
+  }
+  bool removed = false;
+  if (!remove_stale_members(directory)) {
+    ::unlink(lock_path.c_str());
+    removed = ::rmdir(directory.c_str()) == 0;  // fails, leaving the folder, if it holds anything else
+  }
+  unlock_bus_folder(lock_fd);
+  return removed;
+}
 
 std::filesystem::path UserspaceCanBus::default_root() {
   if (const char* env = std::getenv("A3_CAN_USERSPACE_DIR"); env != nullptr && *env != '\0') {
@@ -87,25 +145,27 @@ UserspaceCanBus::UserspaceCanBus(const std::string& bus_name, UserspaceCanOption
 }
 
 void UserspaceCanBus::join() {
-  std::error_code ec;
-  std::filesystem::create_directories(directory_, ec);
-  if (ec || !std::filesystem::is_directory(directory_)) {
-    throw std::runtime_error("userspace CAN bus: cannot create " + directory_.string() + ": " +
-                             ec.message());
-  }
   const std::filesystem::path lock_path = directory_ / ".lock";
-  const int lock_fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0600);
-  if (lock_fd < 0) {
-    throw std::runtime_error("userspace CAN bus: cannot open " + lock_path.string() + ": " +
-                             errno_text(errno));
+  int lock_fd = -1;
+  // A leaving last member may remove the folder between our steps: then start over.
+  for (int attempt = 0; attempt < 100 && lock_fd < 0; ++attempt) {
+    std::error_code ec;
+    std::filesystem::create_directories(directory_, ec);
+    if (ec) {
+      throw std::runtime_error("userspace CAN bus: cannot create " + directory_.string() + ": " + ec.message());
+    }
+    lock_fd = lock_bus_folder(lock_path, true);
+    if (lock_fd < 0 && errno != ENOENT && errno != ESTALE) {
+      throw std::runtime_error("userspace CAN bus: cannot open " + lock_path.string() + ": " + errno_text(errno));
+    }
   }
-  ::flock(lock_fd, LOCK_EX);
+  if (lock_fd < 0) {
+    throw std::runtime_error("userspace CAN bus: " + directory_.string() +
+                             " kept disappearing while joining (100 attempts)");
+  }
   struct Unlock {
     int fd;
-    ~Unlock() {
-      ::flock(fd, LOCK_UN);
-      ::close(fd);
-    }
+    ~Unlock() { unlock_bus_folder(fd); }
   } unlock{lock_fd};
 
   static std::atomic<unsigned> counter{0};
@@ -123,6 +183,7 @@ void UserspaceCanBus::join() {
     if (listen_fd_ >= 0) ::close(listen_fd_);
     throw std::runtime_error("userspace CAN bus: cannot listen on " + socket_path_.string() + ": " + why);
   }
+  std::error_code ec;
   for (const auto& entry : std::filesystem::directory_iterator(directory_, ec)) {
     if (entry.path().extension() != ".sock" || entry.path() == socket_path_) continue;
     const int fd = connect_member(entry.path());
@@ -144,6 +205,7 @@ UserspaceCanBus::~UserspaceCanBus() {
   if (listen_fd_ >= 0) ::close(listen_fd_);
   ::unlink(socket_path_.c_str());
   if (wake_fd_ >= 0) ::close(wake_fd_);
+  remove_userspace_can_bus_if_unused(directory_);  // the last member out removes the bus's folder
 }
 
 bool UserspaceCanBus::send(const CanFrame& frame) {

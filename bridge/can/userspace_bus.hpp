@@ -6,7 +6,9 @@
 // folder's lock file, so each pair of members gets exactly one connection). A frame sent is
 // written to every peer's connection; a peer that is slow gets it queued (bounded), a peer
 // that is gone is dropped, and a socket file left by a crashed process is removed by the next
-// member that joins. No daemon, no hub: any member can leave or crash without stopping the
+// member that joins or leaves. The last member to leave removes the bus's folder (socket files
+// of crashed members, lock file, folder); whoever started the members can do the same for a bus
+// whose last member crashed (remove_userspace_can_bus_if_unused). No daemon, no hub: any member can leave or crash without stopping the
 // others. Why not datagrams: a Unix datagram receiver's queue holds only
 // net.unix.max_dgram_qlen (10 by default) packets, far too few for bursts of frames.
 #pragma once
@@ -31,6 +33,11 @@ struct UserspaceCanOptions {
   std::filesystem::path root;
   std::size_t tx_queue_frames_per_peer = 4096;  // frames waiting for a slow peer
 };
+
+// With the bus's lock: removes the socket files nobody listens on and, when no member is left,
+// the lock file and the folder. True when the folder is gone; false while a member listens (or
+// the folder holds files that are not the bus's). Never throws.
+bool remove_userspace_can_bus_if_unused(const std::filesystem::path& directory);
 
 class UserspaceCanBus final : public CanBus {
  public:

@@ -204,7 +204,8 @@ TEST_F(UserspaceBusTest, ASocketLeftByACrashedMemberIsRemoved) {
     UserspaceCanBus gone("bus1", options_);
     stale = gone.socket_path();
   }
-  // Simulate the crash: a socket file nobody listens on.
+  // Simulate the crash: a socket file nobody listens on (the folder went with its last member).
+  std::filesystem::create_directories(stale.parent_path());
   {
     const int fd = ::socket(AF_UNIX, SOCK_SEQPACKET, 0);
     struct sockaddr_un addr {};

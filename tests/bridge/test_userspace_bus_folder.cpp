@@ -1,0 +1,89 @@
+// The userspace CAN bus leaves nothing behind (issue 14): the last member to leave removes the
+// bus's folder; a bus whose last member crashed (a killed process: its socket file stays) is
+// removed by remove_userspace_can_bus_if_unused, as `a3rig run` does at exit; members joining
+// while the last one leaves always get a working bus. Label "faults": members crash on purpose.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <filesystem>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bridge/can/userspace_bus.hpp"
+
+namespace a3::bridge {
+namespace {
+
+class UserspaceBusFolder : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = std::filesystem::path("/tmp") / ("a3-ucan-folder-test-" + std::to_string(::getpid()));
+    std::filesystem::remove_all(root_);
+    options_.root = root_;
+  }
+  void TearDown() override { std::filesystem::remove_all(root_); }
+  std::filesystem::path bus_dir(const std::string& name) const { return root_ / name; }
+  std::filesystem::path root_;
+  UserspaceCanOptions options_;
+};
+
+TEST_F(UserspaceBusFolder, TheLastMemberToLeaveRemovesIt) {
+  auto a = std::make_unique<UserspaceCanBus>("bus", options_);
+  auto b = std::make_unique<UserspaceCanBus>("bus", options_);
+  ASSERT_TRUE(std::filesystem::exists(bus_dir("bus") / ".lock"));
+  a.reset();
+  EXPECT_TRUE(std::filesystem::exists(bus_dir("bus"))) << "b is still on the bus";
+  EXPECT_TRUE(std::filesystem::exists(b->socket_path()));
+  b.reset();
+  EXPECT_FALSE(std::filesystem::exists(bus_dir("bus")));
+}
+
+TEST_F(UserspaceBusFolder, ABusWhoseLastMemberCrashedIsRemovedByWhoeverStartedIt) {
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    new UserspaceCanBus("crashed", options_);  // never destroyed: the process dies with it
+    ::_exit(0);
+  }
+  int status = -1;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(std::filesystem::exists(bus_dir("crashed") / ".lock")) << "the crash left the folder";
+  EXPECT_TRUE(remove_userspace_can_bus_if_unused(bus_dir("crashed")));
+  EXPECT_FALSE(std::filesystem::exists(bus_dir("crashed")));
+  EXPECT_TRUE(remove_userspace_can_bus_if_unused(bus_dir("crashed"))) << "nothing to remove is no error";
+}
+
+TEST_F(UserspaceBusFolder, ABusWithAMemberIsNotRemoved) {
+  UserspaceCanBus member("alive", options_);
+  EXPECT_FALSE(remove_userspace_can_bus_if_unused(bus_dir("alive")));
+  EXPECT_TRUE(std::filesystem::exists(member.socket_path()));
+  UserspaceCanBus later("alive", options_);
+  EXPECT_EQ(later.peer_count(), 1u) << "the member still listens";
+}
+
+TEST_F(UserspaceBusFolder, MembersThatComeAndGoAtOnceAlwaysJoin) {
+  std::atomic<int> failures{0};
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 2; ++t) {
+    threads.emplace_back([&] {
+      for (int i = 0; i < 100; ++i) {
+        try {
+          UserspaceCanBus bus("churn", options_);
+          if (!std::filesystem::exists(bus.socket_path())) ++failures;
+        } catch (const std::exception&) {
+          ++failures;
+        }
+      }
+    });
+  }
+  for (auto& t : threads) t.join();
+  EXPECT_EQ(failures.load(), 0);
+  EXPECT_FALSE(std::filesystem::exists(bus_dir("churn")));
+}
+
+}  // namespace
+}  // namespace a3::bridge
