@@ -147,7 +147,7 @@ A3_REGISTER_COMMAND("12-mcp", [](CLI::App& app) {
       "Exit status (as a3rig run): 0 the episode was written, 2 bad usage or input, 3 interrupted (the client left "
       "mid-dialogue, or Ctrl-C; episode written), 4 a node failed or froze (episode written), 5 the real-time "
       "contract was broken (episode written), 6 the client never made a vehicle or A2A call (status agent_failed; "
-      "episode written).");
+      "episode written), 8 an output could not be written (status output_failed: <file>: <reason>).");
   add_scenario_run_flags(*cmd, args->flags);
   cmd->add_option("--http", args->http,
                   "serve Streamable HTTP on HOST:PORT (e.g. 127.0.0.1:8765; endpoint /mcp) instead of stdio; a POST "

@@ -1,13 +1,13 @@
-// Building and writing the episode.
+// Building and writing the episode (the plot: trajectory_plot.cpp).
 #include "rigs/core/episode_writer.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <ctime>
-#include <fstream>
 #include <set>
 
+#include "common/atomic_file.hpp"
+#include "common/json_text.hpp"
 #include "rigs/core/llm_run.hpp"
 
 namespace a3::rigs {
@@ -148,80 +148,7 @@ nlohmann::json build_episode(const Scenario& s, const RunOptions& o, const Recor
 }
 
 void write_episode(const std::filesystem::path& dir, const nlohmann::json& episode) {
-  std::filesystem::create_directories(dir);
-  const auto path = dir / "episode.json";
-  std::ofstream out(path);
-  out << episode.dump(2) << "\n";
-  if (!out.flush()) throw std::runtime_error(path.string() + ": write failed");
-}
-
-std::string write_trajectory_plot(const std::filesystem::path& dir, const Scenario& s, const RecordedEpisode& rec) {
-  if (rec.trajectory.empty()) return "no trajectory recorded";
-  const auto abs = std::filesystem::absolute(dir);
-  {
-    std::ofstream d(abs / "trajectory.tsv");
-    d << "# t_s\tx_m\ty_m\tz_m\tbattery_pct\tspeed_mps\n";
-    for (const auto& p : rec.trajectory) d << p[0] << "\t" << p[1] << "\t" << p[2] << "\t" << p[3] << "\t" << p[4] << "\t" << p[5] << "\n";
-  }
-  std::ofstream gp(abs / "trajectory.gp");
-  // The map frames the track, the objectives and the no-fly zones (not the whole geofence).
-  double x0 = 1e18, x1 = -1e18, y0 = 1e18, y1 = -1e18;
-  auto extend = [&](double x, double y, double r) {
-    x0 = std::min(x0, x - r);
-    x1 = std::max(x1, x + r);
-    y0 = std::min(y0, y - r);
-    y1 = std::max(y1, y + r);
-  };
-  for (const auto& p : rec.trajectory) extend(p[1], p[2], 0.0);
-  for (const auto& o : s.mission.objectives) {
-    for (const auto& p : o.area) extend(p.x(), p.y(), 0.0);
-    if (o.type == agent::ObjectiveType::kImagePoint || o.type == agent::ObjectiveType::kDelivery) extend(o.point.x(), o.point.y(), o.radius_m);
-  }
-  for (const auto& z : s.airspace.no_fly_zones) {
-    if (z.polygon.empty()) extend(z.centre.x(), z.centre.y(), z.radius_m);
-    for (const auto& p : z.polygon) extend(p.x(), p.y(), 0.0);
-  }
-  const double pad = 0.08 * std::max(x1 - x0, y1 - y0) + 10.0;
-  gp << "set terminal pngcairo size 1200,550 font ',10' noenhanced\nset output '" << (abs / "trajectory.png").string() << "'\n"
-     << "set multiplot layout 1,2 title '" << s.name << "'\n"
-     << "set size ratio -1\nset xlabel 'east (m)'\nset ylabel 'north (m)'\nset grid\nset key bottom right\n"
-     << "set xrange [" << x0 - pad << ":" << x1 + pad << "]\nset yrange [" << y0 - pad << ":" << y1 + pad << "]\n";
-  int obj = 1;
-  if (s.airspace.geofence.size() >= 3) {
-    gp << "set object " << obj++ << " polygon from ";
-    for (std::size_t i = 0; i <= s.airspace.geofence.size(); ++i) {
-      const auto& p = s.airspace.geofence[i % s.airspace.geofence.size()];
-      gp << (i ? " to " : "") << p.x() << "," << p.y();
-    }
-    gp << " fs empty border lc rgb '#888888' dt 2\n";
-  }
-  for (const auto& z : s.airspace.no_fly_zones) {
-    if (z.polygon.empty()) {
-      gp << "set object " << obj++ << " circle at " << z.centre.x() << "," << z.centre.y() << " size " << z.radius_m
-         << " fs transparent solid 0.25 fc rgb '#d62728'\n";
-    }
-  }
-  for (const auto& o : s.mission.objectives) {
-    if (o.area.size() >= 3) {
-      gp << "set object " << obj++ << " polygon from ";
-      for (std::size_t i = 0; i <= o.area.size(); ++i) {
-        const auto& p = o.area[i % o.area.size()];
-        gp << (i ? " to " : "") << p.x() << "," << p.y();
-      }
-      gp << " fs transparent solid 0.15 fc rgb '#2ca02c'\n";
-    } else if (o.type != agent::ObjectiveType::kReturnAndLand) {
-      gp << "set label " << obj++ << " '" << o.id << "' at " << o.point.x() << "," << o.point.y() << " point pt 7 ps 1.5 lc rgb '#2ca02c' offset 1,1\n";
-    }
-  }
-  gp << "plot '" << (abs / "trajectory.tsv").string() << "' using 2:3 with lines lw 2 lc rgb '#1f77b4' title 'ground track'\n"
-     << "unset object\nunset label\nset size noratio\nset autoscale\nset xlabel 'mission time (s)'\nset ylabel 'altitude (m)'\n"
-     << "set y2label 'battery (%)'\nset y2tics\nset ytics nomirror\n"
-     << "plot '" << (abs / "trajectory.tsv").string() << "' using 1:4 with lines lw 2 title 'altitude', '' using 1:5 axes x1y2 with lines lw 2 title 'battery'\n"
-     << "unset multiplot\n";
-  gp.close();
-  const std::string cmd = "gnuplot '" + (abs / "trajectory.gp").string() + "' > '" + (abs / "gnuplot.log").string() + "' 2>&1";
-  if (std::system(cmd.c_str()) != 0) return "gnuplot failed (see " + (abs / "gnuplot.log").string() + ")";
-  return "";
+  common::write_file_atomically(dir / "episode.json", common::dump_json_text(episode, 2) + "\n");
 }
 
 }  // namespace a3::rigs

@@ -30,10 +30,13 @@ struct RunFacts {
 nlohmann::json build_episode(const Scenario& scenario, const RunOptions& options, const RecordedEpisode& rec,
                              const RunFacts& facts);
 
-// Writes DIR/episode.json; throws std::runtime_error when it cannot.
+// Writes DIR/episode.json whole or not at all (creating DIR); throws common::OutputError
+// ("<file>: <reason>") when it cannot. Text that is not UTF-8 is replaced, never thrown about.
 void write_episode(const std::filesystem::path& dir, const nlohmann::json& episode);
 // DIR/trajectory.png (gnuplot): the ground track over the geofence, no-fly zones and
-// objectives, and altitude and battery over time. Returns "" or why it could not.
+// objectives, and altitude and battery over time, with its data and script (trajectory.tsv,
+// trajectory.gp). Returns "" when written, or why gnuplot could not draw it; throws
+// common::OutputError ("<file>: <reason>") when a file could not be written whole (a full disk).
 std::string write_trajectory_plot(const std::filesystem::path& dir, const Scenario& scenario,
                                   const RecordedEpisode& rec);
 

@@ -1,6 +1,9 @@
 // Writes every message of the rig's channels to an LCM log file (the format of lcm-logger), so
 // an episode can be replayed with lcm-logplayer and inspected with lcm-spy. Event timestamps
 // are the run's clock (simulated time in virtual runs).
+// The log is written to "<path>.tmp-<pid>" and renamed to <path> by close() when every write
+// succeeded. The first failed write (a full disk) stops the logging at once, removes the partial
+// log (so that the episode, written next, has the room) and is kept in failure(); the run flies on.
 #pragma once
 
 #include <lcm/lcm-cpp.hpp>
@@ -20,7 +23,7 @@ const std::vector<std::string>& rig_channels();
 
 class LcmLogNode final : public common::Node {
  public:
-  // Throws std::runtime_error when the file cannot be created.
+  // Throws common::OutputError ("<path>: <reason>") when the file cannot be created.
   explicit LcmLogNode(const std::filesystem::path& path);
   ~LcmLogNode() override;
   std::string name() const override { return "lcm_log"; }
@@ -28,12 +31,21 @@ class LcmLogNode final : public common::Node {
   uint64_t events() const;
   // events (messages written to the log).
   const common::CounterSet& counters() const override { return counter_set_; }
+  // Flushes, syncs and renames the log into place; a failure is kept in failure().
   void close();
+  // "" while every write succeeded, else "<path>: <reason>" (e.g. "No space left on device").
+  std::string failure() const;
+  const std::filesystem::path& path() const { return path_; }
 
  private:
+  void write_event(const std::string& channel, const uint8_t* data, std::size_t size);
+  void fail(int error_number);  // with mutex_ held
+
   std::filesystem::path path_;
+  std::filesystem::path temporary_;
   mutable std::mutex mutex_;
   std::unique_ptr<lcm::LogFile> log_;
+  std::string failure_;
   common::Executor* executor_ = nullptr;
   common::CounterSet counter_set_;
   common::Counter& events_ = counter_set_.add("events");

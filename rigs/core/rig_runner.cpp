@@ -25,6 +25,7 @@
 #include "rigs/core/realtime_report.hpp"
 #include "rigs/core/rig_processes.hpp"
 #include "rigs/core/rig_threads.hpp"
+#include "rigs/core/run_outputs.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -125,15 +126,19 @@ RunResult finish(const Scenario& s, const RunOptions& o, RigNodes& n, const RunE
   facts.counters = end.counters;
   facts.realtime = end.realtime;
   if (n.log) n.log->close();
-  result.episode = build_episode(s, o, rec, facts);
-  write_episode(o.out_dir, result.episode);
-  result.episode_path = o.out_dir / "episode.json";
-  if (o.write_plot) result.plot_problem = write_trajectory_plot(o.out_dir, s, rec);
+  WrittenOutputs written = write_run_outputs(s, o, rec, facts, n.log ? n.log->failure() : "");
+  result.flight_status = end.status;
+  result.status = written.status;
+  result.episode = std::move(written.episode);
+  result.episode_path = written.episode_path;
+  result.plot_problem = written.plot_problem;
+  result.outputs_lost = written.lost;
   if (progress) {
     char text[200];
     std::snprintf(text, sizeof text, "episode ended: %s after %.1f s of mission (%.1f s wall)", end.status.c_str(),
                   end.mission_s, end.wall_s);
     progress(text);
+    for (const std::string& what : result.outputs_lost) progress("output lost: " + what);
   }
   return result;
 }
@@ -321,10 +326,12 @@ int run_exit_status(const std::string& status) {
   if (status.rfind("realtime_violated", 0) == 0) return 5;
   if (status.rfind("agent_failed", 0) == 0) return 6;
   if (status.rfind("endpoint_failed", 0) == 0) return 7;
+  if (status.rfind("output_failed", 0) == 0) return 8;
   return 0;
 }
 
 RunResult run_episode(const Scenario& s, const RunOptions& o, const ProgressFn& progress, const std::atomic<bool>* stop) {
+  check_output_space(s, o);  // nothing flies when the outputs cannot fit
   const RigConfigs cfg = make_rig_configs(s, o);
   return o.runtime == Runtime::kVirtual ? run_virtual(s, o, cfg, progress, stop) : run_real(s, o, cfg, progress, stop);
 }

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -20,9 +21,11 @@ namespace a3::rigs {
 
 struct RunResult {
   std::string status;
+  std::string flight_status;  // how the flight ended; status differs when an output was lost
   nlohmann::json episode;
-  std::filesystem::path episode_path;
+  std::filesystem::path episode_path;  // empty when episode.json could not be written
   std::string plot_problem;  // "" when the plot was written
+  std::vector<std::string> outputs_lost;  // "<file>: <reason>" of every output that could not be written
   double mission_time_s = 0.0;
   double wall_time_s = 0.0;
   double achieved_real_time_factor = 0.0;
@@ -31,10 +34,12 @@ struct RunResult {
 using ProgressFn = std::function<void(const std::string& line)>;
 
 // The exit status of `a3rig run` for a run's status: 0 written, 3 interrupted, 4 node_failed,
-// 5 realtime_violated, 6 agent_failed, 7 endpoint_failed (rigs/core/agent_outcome.hpp).
+// 5 realtime_violated, 6 agent_failed, 7 endpoint_failed (rigs/core/agent_outcome.hpp),
+// 8 output_failed (an output could not be written: rigs/core/run_outputs.hpp).
 int run_exit_status(const std::string& status);
 
 // stop: set from a signal handler to end the run early (the episode is still written).
+// Throws OutputSpaceError before take-off when the output folder has too little room.
 RunResult run_episode(const Scenario& scenario, const RunOptions& options, const ProgressFn& progress,
                       const std::atomic<bool>* stop);
 

@@ -1,7 +1,8 @@
 // The closing lines of a run (`a3rig run`, `a3rig mcp`): where the episode, LCM log and plot
-// were written, the status and timing, the real-time accounting, success, and the α³ score of
-// the episode as `a3rig score` computes it (or why the episode is not valid). `a3rig mcp`
-// prints them on stderr, since its stdout carries the MCP session.
+// were written (or "not written (<file>: <reason>)"), the status (with how the flight ended
+// when an output was lost: `output_failed: ...`, exit 8) and timing, the real-time accounting,
+// success, and the α³ score of the episode as `a3rig score` computes it (or why the episode
+// is not valid). `a3rig mcp` prints them on stderr, since its stdout carries the MCP session.
 #pragma once
 
 #include <cstdio>
