@@ -26,7 +26,8 @@ struct BridgeArgs {
   std::string can = "vcan0";
   std::string home;
   uint64_t seed = 1;
-  int node_id = 20;
+  int node_id = bridge::kDefaultBridgeNodeId;
+  int fc_node_id = bridge::kDefaultFcNodeId;
   bridge::SensorRates rates;
   std::string lcm_url;
   double rtf = 1.0;
@@ -46,6 +47,7 @@ int run_bridge(const BridgeArgs& args) {
   if (!args.home.empty()) config.home = parse_home(args.home);
   config.seed = args.seed;
   config.node_id = static_cast<uint8_t>(args.node_id);
+  config.fc_node_id = static_cast<uint8_t>(args.fc_node_id);
   config.rates = args.rates;
   const common::WallClock clock(args.rtf);
   std::unique_ptr<bridge::CanBus> can = bridge::open_can_bus(args.can);
@@ -77,8 +79,8 @@ A3_REGISTER_COMMAND("51-node-bridge", [](CLI::App& app) {
       "bridge",
       "Run the LCM<->CAN bridge in real time: A3_STATE -> DroneCAN sensor messages (IMU, GNSS, baro, "
       "magnetometer, battery, with seeded noise), esc.RawCommand -> A3_ACTUATORS, A3_FC_CMD -> a3.fc.Command "
-      "(heartbeats only when the ground sends them), a3.fc.Status -> A3_FC_STATUS. Stops on Ctrl-C or after "
-      "--duration-s.");
+      "(heartbeats only when the ground sends them), a3.fc.Status -> A3_FC_STATUS, a3.fc.CommandRefused -> "
+      "A3_SAFETY (command_refused). Stops on Ctrl-C or after --duration-s.");
   cmd->add_option("--can", args->can,
                   "CAN bus: an interface name (SocketCAN when it exists, else the userspace bus of that name), "
                   "socketcan:NAME or userspace:NAME (default vcan0)");
@@ -86,6 +88,10 @@ A3_REGISTER_COMMAND("51-node-bridge", [](CLI::App& app) {
                                         "give the fc the same one");
   cmd->add_option("--seed", args->seed, "seed of the sensor noise (default 1)");
   cmd->add_option("--node-id", args->node_id, "DroneCAN node ID (default 20)")->check(CLI::Range(1, 127));
+  cmd->add_option("--fc-node-id", args->fc_node_id,
+                  "the flight controller's node ID: the only node whose esc.RawCommand and a3.fc.Status the bridge "
+                  "takes; others are refused, counted (rejected_source) and reported on A3_SAFETY (default 10)")
+      ->check(CLI::Range(1, 127));
   cmd->add_option("--imu-rate-hz", args->rates.imu_hz, "IMU report rate; never above the state rate (default 200)")
       ->check(CLI::Range(1.0, 10000.0));
   cmd->add_option("--gnss-rate-hz", args->rates.gnss_hz, "GNSS rate (default 10)")->check(CLI::Range(0.1, 1000.0));

@@ -10,8 +10,10 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "bridge/can/can_bus_factory.hpp"
+#include "bridge/nodes/command_sources.hpp"
 #include "bridge/nodes/fc_node.hpp"
 #include "common/json_file.hpp"
 #include "common/runtime.hpp"
@@ -31,7 +33,8 @@ struct FcArgs {
   std::string airframe;
   std::string scenario;
   std::string home;
-  int node_id = 10;
+  int node_id = bridge::kDefaultFcNodeId;
+  std::vector<int> command_sources{bridge::kDefaultBridgeNodeId};
   bool no_step_on_command = false;
   double rtf = 1.0;
   double duration_s = 0.0;
@@ -57,6 +60,7 @@ bridge::FcNodeConfig fc_config_from(const FcArgs& args) {
   }
   if (!args.home.empty()) config.home = parse_home(args.home);
   config.node_id = static_cast<uint8_t>(args.node_id);
+  config.command_sources.assign(args.command_sources.begin(), args.command_sources.end());
   config.step_on_command = !args.no_step_on_command;
   return config;
 }
@@ -82,10 +86,10 @@ int run_fc(const FcArgs& args) {
   common::RealTimeNodeThread thread(node, clock, "memq://");
   std::fprintf(stderr,
                "a3rig node fc: node %d on %s, control %.0f Hz, status %.0f Hz, vehicle %.2f kg, home %.6f, %.6f, "
-               "%.1f m, real-time factor %g\n",
+               "%.1f m, commands from node(s) %s, real-time factor %g\n",
                args.node_id, can->name().c_str(), config.params.control_rate_hz, config.params.status_rate_hz,
                config.params.vehicle.mass_kg, config.home.latitude_deg, config.home.longitude_deg,
-               config.home.height_m, args.rtf);
+               config.home.height_m, bridge::command_sources_text(config.command_sources).c_str(), args.rtf);
   const std::string failure = run_node_thread(thread, clock, args.duration_s, args.report_every_s,
                                               [&](double sim_s) { report(node, *can, sim_s); });
   node.stop();
@@ -127,6 +131,13 @@ A3_REGISTER_COMMAND("52-node-fc", [](CLI::App& app) {
   cmd->add_option("--home", args->home, "ENU origin LAT,LON,HEIGHT (default 47.397742,8.545594,488); "
                                         "give the bridge the same one");
   cmd->add_option("--node-id", args->node_id, "DroneCAN node ID (default 10)")->check(CLI::Range(1, 127));
+  cmd->add_option("--command-sources", args->command_sources,
+                  "node IDs whose a3.fc.Command (and a3.sim.Clock) the fc obeys, comma-separated: the bridge's and, "
+                  "where one is on the bus, a ground station's (default 20, the bridge). Commands from any other "
+                  "node are refused, counted (commands_rejected_source) and reported in a3.fc.CommandRefused, at "
+                  "most once a second. CAN has no authentication: see bridge/README.md")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 127));
   cmd->add_flag("--no-step-on-command", args->no_step_on_command,
                 "do not run a control step at once when a command is accepted (wait for the next tick)");
   cmd->add_option("--rtf", args->rtf, "real-time factor: simulated seconds per wall second (default 1)")

@@ -54,6 +54,9 @@ RigConfigs make_rig_configs(const Scenario& s, const RunOptions& o) {
   // Bridge and flight controller.
   c.bridge.seed = o.seed;
   c.bridge.forward_sim_clock = o.runtime == Runtime::kReal && o.sync == Sync::kLockstep;
+  // Only the commanders command: the fc obeys the bridge, the bridge takes ESC commands from the fc.
+  c.fc.command_sources = {c.bridge.node_id};
+  c.bridge.fc_node_id = c.fc.node_id;
   c.fc.params.vehicle = fc_vehicle_from_airframe(c.dynamics.params);
   c.fc.params.fence = geofence_from_initial_state(s.initial_state, where + "/initial_state");
 
