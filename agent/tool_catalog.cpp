@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "agent/tool_catalog_json.hpp"
+#include "common/json_text.hpp"
 
 namespace a3::agent {
 namespace {
@@ -215,11 +216,14 @@ CallAsAction ToolCatalog::action_from_call(const std::string& name, const nlohma
     if (text.find_first_not_of(" \t\r\n") == std::string::npos) {
       args = nlohmann::json::object();
     } else {
-      args = nlohmann::json::parse(text, nullptr, false);
-      if (args.is_discarded()) {
-        out.problem = name + ": arguments are not JSON: " + text.substr(0, 200);
+      std::string problem;
+      auto parsed = common::try_parse_json_text(text, &problem);
+      if (!parsed) {
+        out.problem = name + ": arguments are not JSON (" + problem + "): " +
+                      common::dump_json_text(nlohmann::json(text.substr(0, 200)));
         return out;
       }
+      args = std::move(*parsed);
     }
   }
   if (args.is_null()) args = nlohmann::json::object();

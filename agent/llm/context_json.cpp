@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "agent/llm/json_extract.hpp"
+#include "common/json_text.hpp"
 
 namespace a3::agent::llm {
 namespace {
@@ -212,9 +213,8 @@ RebuiltContext context_from_json(const nlohmann::json& j) {
 std::optional<nlohmann::json> find_context_block(const std::string& text) {
   for (const auto& span : top_level_object_spans(text)) {
     if (!span.closed) continue;
-    auto j = nlohmann::json::parse(text.begin() + static_cast<std::ptrdiff_t>(span.begin),
-                                   text.begin() + static_cast<std::ptrdiff_t>(span.end), nullptr, false);
-    if (!j.is_discarded() && j.is_object() && j.contains(kContextMarker)) return j;
+    auto j = common::try_parse_json_text(std::string_view(text).substr(span.begin, span.end - span.begin));
+    if (j && j->is_object() && j->contains(kContextMarker)) return j;
   }
   return std::nullopt;
 }

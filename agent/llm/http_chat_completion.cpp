@@ -3,6 +3,9 @@
 
 #include <cstdio>
 
+#include "agent/llm/json_extract.hpp"
+#include "common/json_text.hpp"
+
 namespace a3::agent::llm {
 namespace {
 
@@ -138,11 +141,25 @@ std::string body_excerpt(const std::string& body, std::size_t max_chars) {
   }
   if (body.size() > max_chars) out += "…";
   if (body.empty()) out = "(empty)";
-  return out;
+  return valid_utf8(out);
+}
+
+std::optional<json> parse_server_json(const std::string& text, std::string* problem, std::string* utf8_problem) {
+  std::string first_problem;
+  if (auto doc = common::try_parse_json_text(text, &first_problem)) return doc;
+  if (first_problem.find("invalid UTF-8") != std::string::npos) {
+    if (auto repaired = common::try_parse_json_text(valid_utf8(text), problem)) {
+      if (utf8_problem) *utf8_problem = "not valid UTF-8 (" + first_problem + "); the invalid bytes were replaced by U+FFFD";
+      return repaired;
+    }
+    return std::nullopt;
+  }
+  if (problem) *problem = first_problem;
+  return std::nullopt;
 }
 
 std::string error_text_from_body(const std::string& body) {
-  const json doc = json::parse(body, nullptr, false);
+  const json doc = parse_server_json(body, nullptr, nullptr).value_or(json());
   if (doc.is_object()) {
     const auto err = doc.find("error");
     if (err != doc.end()) {
@@ -163,8 +180,10 @@ bool parse_chat_response(const std::string& body, const std::string& url, ChatRe
     error = "response from " + url + ": " + what + " (body starts: " + body_excerpt(body) + ")";
     return false;
   };
-  const json doc = json::parse(body, nullptr, false);
-  if (doc.is_discarded()) return fail("not JSON");
+  std::string problem;
+  const std::optional<json> parsed = parse_server_json(body, &problem, &out.reply_problem);
+  if (!parsed) return fail("not JSON: " + problem);
+  const json& doc = *parsed;
   if (!doc.is_object()) return fail("not a JSON object");
   if (const auto err = doc.find("error"); err != doc.end() && !err->is_null()) {
     return fail("error object: " + error_text_from_body(body));

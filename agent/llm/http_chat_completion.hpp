@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,12 +36,20 @@ nlohmann::json chat_request_body(const LlmEndpoint& endpoint, const ChatRequest&
 nlohmann::json message_json(const ChatMessage& message);
 
 struct ChatResponse {
+  std::string reply_problem;  // why the reply is a bad one although it was read (invalid UTF-8)
   std::string content;
   std::vector<ToolCall> tool_calls;
   std::string finish_reason;
   std::string model;
   LlmUsage usage;
 };
+
+// A model server's JSON text (a body, a stream chunk), parsed with common/json_text's limits.
+// Text that is JSON but for invalid UTF-8 is read with each bad byte replaced by U+FFFD and
+// *utf8_problem saying where: the model's reply is then a bad one to correct, not a failed call.
+// nullopt (and *problem) when it is not JSON even so.
+std::optional<nlohmann::json> parse_server_json(const std::string& text, std::string* problem,
+                                                std::string* utf8_problem);
 
 // Reads a 2xx body. On failure returns false and sets `error` to
 // "response from <url>: <what> (body starts: <excerpt>)".

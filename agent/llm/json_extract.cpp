@@ -1,17 +1,18 @@
 // Balanced-brace scanning with JSON string rules.
 #include "agent/llm/json_extract.hpp"
 
+#include "common/json_text.hpp"
+
 namespace a3::agent::llm {
 namespace {
 
-// nlohmann's message without its "[json.exception.parse_error.101] " tag.
-std::string plain_message(const std::exception& e) {
-  std::string m = e.what();
-  if (!m.empty() && m.front() == '[') {
-    const auto close = m.find("] ");
-    if (close != std::string::npos) m = m.substr(close + 2);
-  }
-  return m;
+// try_parse_json_text's problem about text[begin...] with its byte offset made one into `text`:
+// "byte 7: not valid JSON: ..." of a span at 12 becomes "byte 19: not valid JSON: ...".
+std::string problem_in_text(const std::string& span_problem, std::size_t begin) {
+  if (span_problem.rfind("byte ", 0) != 0) return span_problem;
+  std::size_t digits = 0;
+  const std::size_t offset = std::stoul(span_problem.substr(5), &digits);
+  return "byte " + std::to_string(begin + offset) + span_problem.substr(5 + digits);
 }
 
 // Length of the well-formed UTF-8 sequence starting at text[i], 0 when it is not one.
@@ -50,7 +51,7 @@ std::string valid_utf8(const std::string& text) {
   for (std::size_t i = 0; i < text.size();) {
     const std::size_t n = utf8_sequence_length(text, i);
     if (n == 0) {
-      out += '?';
+      out += "\xEF\xBF\xBD";  // U+FFFD REPLACEMENT CHARACTER
       ++i;
     } else {
       out.append(text, i, n);
@@ -98,15 +99,16 @@ std::vector<TextSpan> top_level_object_spans(const std::string& text) {
 
 ExtractedObject extract_json_object(const std::string& text) {
   ExtractedObject out;
-  auto whole = nlohmann::json::parse(text, nullptr, false);
-  if (!whole.is_discarded() && whole.is_object()) {
-    out.object = std::move(whole);
+  std::string whole_problem;
+  auto whole = common::try_parse_json_text(text, &whole_problem);
+  if (whole && whole->is_object()) {
+    out.object = std::move(*whole);
     return out;
   }
   const auto spans = top_level_object_spans(text);
   if (spans.empty()) {
-    out.error = whole.is_discarded() ? "no JSON object in the reply (no '{' found)"
-                                     : std::string("the reply is JSON but a ") + whole.type_name() + ", not an object";
+    out.error = !whole ? "no JSON object in the reply (no '{' found)"
+                       : std::string("the reply is JSON but a ") + whole->type_name() + ", not an object";
     return out;
   }
   std::string first_error;
@@ -118,18 +120,15 @@ ExtractedObject extract_json_object(const std::string& text) {
       }
       continue;
     }
-    try {
-      auto j = nlohmann::json::parse(text.begin() + static_cast<std::ptrdiff_t>(s.begin),
-                                     text.begin() + static_cast<std::ptrdiff_t>(s.end));
-      if (j.is_object()) {
-        out.object = std::move(j);
-        return out;
-      }
-    } catch (const nlohmann::json::parse_error& e) {
-      if (first_error.empty()) {
-        first_error = "the JSON object starting at character " + std::to_string(s.begin) +
-                      " is not valid JSON: " + plain_message(e);
-      }
+    std::string problem;
+    auto j = common::try_parse_json_text(std::string_view(text).substr(s.begin, s.end - s.begin), &problem);
+    if (j && j->is_object()) {
+      out.object = std::move(*j);
+      return out;
+    }
+    if (!j && first_error.empty()) {
+      first_error = "the JSON object starting at character " + std::to_string(s.begin) + ": " +
+                    problem_in_text(problem, s.begin);
     }
   }
   out.error = first_error;

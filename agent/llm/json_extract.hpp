@@ -27,11 +27,13 @@ struct ExtractedObject {
   std::string error;                     // why nothing was found (names the position)
 };
 
-// `text` with every byte that is not part of a well-formed UTF-8 sequence replaced by '?', so
-// that it can go into JSON (messages quoting a model's bytes, for instance).
+// `text` with every byte that is not part of a well-formed UTF-8 sequence replaced by U+FFFD, so
+// that it can go into JSON (messages quoting a model's bytes, a reply kept in an attempt log).
 std::string valid_utf8(const std::string& text);
 
 // The whole text if it is a JSON object; else the first top-level span that parses as one.
+// Parsed with common/json_text's limits: nesting deeper than 128, duplicate keys and invalid
+// UTF-8 are refused with their place.
 ExtractedObject extract_json_object(const std::string& text);
 
 }  // namespace a3::agent::llm

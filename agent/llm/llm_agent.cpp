@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 
+#include "agent/llm/json_extract.hpp"
 #include "agent/llm/llm_reply.hpp"
 #include "agent/llm/native_reply.hpp"
 #include "common/clock.hpp"
@@ -85,6 +86,9 @@ LlmAgent::Reading LlmAgent::read(const LlmCallResult& call, int turn_number) con
     ParsedReply reply = parse_reply(call.content, tools_);
     r = {reply.intent, reply.text, std::move(reply.actions), {}, std::move(reply.problems), call.content};
   }
+  // The reply goes into the attempt log and the correction prompt: both JSON.
+  r.reply = valid_utf8(r.reply);
+  if (!call.reply_problem.empty()) r.problems.insert(r.problems.begin(), "reply: " + call.reply_problem);
   // A model never sees the key; should a reply carry it anyway, it is not used or recorded.
   if (!secret_.empty() && r.reply.find(secret_) != std::string::npos) {
     r.problems.push_back("reply: repeats a credential; not used");

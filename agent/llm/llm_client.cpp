@@ -396,6 +396,7 @@ std::string take_answer(Exchange& ex, const std::string& url, const std::string&
   redact_answer(parsed, key);
   result.ok = true;
   result.content = std::move(parsed.content);
+  result.reply_problem = std::move(parsed.reply_problem);
   result.tool_calls = std::move(parsed.tool_calls);
   result.finish_reason = std::move(parsed.finish_reason);
   result.model = std::move(parsed.model);

@@ -97,6 +97,7 @@ struct LlmAttempt {
 struct LlmCallResult {
   bool ok = false;
   std::string content;        // choices[0].message.content ("" when null)
+  std::string reply_problem;  // ok, but the reply had to be repaired to be read (invalid UTF-8)
   std::vector<ToolCall> tool_calls;  // choices[0].message.tool_calls, in order
   std::string finish_reason;  // choices[0].finish_reason
   std::string model;          // as the server reports it

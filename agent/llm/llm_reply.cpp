@@ -31,6 +31,8 @@ std::string known_tasks(const ToolCatalog& tools) {
 
 std::string type_of(const nlohmann::json& j) { return j.type_name(); }
 
+// Copying args and payloads recurses on their depth: safe because replies are parsed with
+// common/json_text's depth bound (extract_json_object).
 nlohmann::json check_action(const nlohmann::json& a, std::size_t i, const ToolCatalog& tools,
                             std::vector<std::string>& problems) {
   const std::string where = "actions/" + std::to_string(i);

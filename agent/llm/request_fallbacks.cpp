@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cctype>
 
+#include "common/json_text.hpp"
+
 namespace a3::agent::llm {
 namespace {
 
@@ -34,7 +36,7 @@ std::string lower(std::string s) {
 
 // error.param of an OpenAI error body, "" when there is none.
 std::string error_param(const std::string& body) {
-  const nlohmann::json doc = nlohmann::json::parse(body, nullptr, false);
+  const nlohmann::json doc = common::try_parse_json_text(body).value_or(nlohmann::json());
   if (!doc.is_object() || !doc.contains("error") || !doc["error"].is_object()) return "";
   const auto& param = doc["error"].value("param", nlohmann::json());
   return param.is_string() ? param.get<std::string>() : "";

@@ -52,8 +52,13 @@ std::string ChatStreamAssembler::add(const std::string& data, bool& token) {
     done_ = true;
     return "";
   }
-  const json chunk = json::parse(data, nullptr, false);
-  if (!chunk.is_object()) return "a stream chunk is not a JSON object (starts: " + body_excerpt(data) + ")";
+  std::string problem, utf8_problem;
+  const json chunk = parse_server_json(data, &problem, &utf8_problem).value_or(json());
+  if (!chunk.is_object()) {
+    return "a stream chunk is not a JSON object" + (problem.empty() ? "" : " (" + problem + ")") +
+           " (starts: " + body_excerpt(data) + ")";
+  }
+  if (!utf8_problem.empty() && reply_problem_.empty()) reply_problem_ = "a stream chunk is " + utf8_problem;
   if (chunk.contains("error") && !chunk["error"].is_null()) return "error in the stream: " + error_text_from_body(data);
   if (const std::string m = text_of(chunk, "model"); !m.empty()) model_ = m;
   if (chunk.contains("usage") && chunk["usage"].is_object()) usage_ = chunk["usage"];
@@ -95,6 +100,7 @@ std::string ChatStreamAssembler::finish(ChatResponse& out) const {
   if (const std::string problem = read_tool_calls(calls, out.tool_calls); !problem.empty()) {
     return "streamed " + problem;
   }
+  out.reply_problem = reply_problem_;
   out.content = content_;
   out.finish_reason = finish_reason_;
   out.model = model_;

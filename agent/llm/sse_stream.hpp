@@ -51,6 +51,7 @@ class ChatStreamAssembler {
   std::string content_;
   std::map<int, nlohmann::json> tool_calls_;  // by index: {"id", "function": {"name", "arguments"}}
   std::string finish_reason_;
+  std::string reply_problem_;  // the first chunk read only by replacing invalid UTF-8
   std::string model_;
   nlohmann::json usage_;
 };

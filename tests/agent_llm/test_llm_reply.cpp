@@ -62,7 +62,7 @@ TEST(LlmReply, NotJson) {
   expect_problem("I will take off now.", "reply: no JSON object in the reply");
   expect_problem("", "reply: empty");
   expect_problem("   \n", "reply: empty");
-  expect_problem(R"({"intent": "x", "actions": [,]})", "is not valid JSON");
+  expect_problem(R"({"intent": "x", "actions": [,]})", "byte 28: not valid JSON");
   expect_problem(R"({"intent": "x", "actions": [)", "never closed");
   expect_problem(R"(["intent", "x"])", "not an object");
   expect_problem("\xff\xfe{\"intent\": \"x\\xff\"}", "reply:");
@@ -74,7 +74,8 @@ TEST(LlmReply, NotJson) {
 
 TEST(JsonExtract, ValidUtf8ReplacesOnlyBrokenBytes) {
   EXPECT_EQ(agent::llm::valid_utf8("caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x9a\x81"), "caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x9a\x81");
-  EXPECT_EQ(agent::llm::valid_utf8("a\xff b\xc3 c\xed\xa0\x80 d\xe2\x82"), "a? b? c??? d??");
+  EXPECT_EQ(agent::llm::valid_utf8("a\xff b\xc3 c\xed\xa0\x80 d\xe2\x82"),
+            "a\xef\xbf\xbd b\xef\xbf\xbd c\xef\xbf\xbd\xef\xbf\xbd\xef\xbf\xbd d\xef\xbf\xbd\xef\xbf\xbd");
 }
 
 TEST(LlmReply, MissingOrBadIntent) {
