@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <limits>
+#include <string_view>
+
+#include "common/json_text.hpp"
 
 namespace a3::agent {
 namespace {
@@ -10,7 +13,7 @@ namespace {
 a3lcm::link_message_t make(const nlohmann::json& body, const std::string& kind, int64_t id, int64_t utime_us,
                            const std::string& sender, int64_t extra_bytes) {
   a3lcm::link_message_t m;
-  const std::string text = body.dump();
+  const std::string text = common::dump_json_text(body);
   m.utime_us = utime_us;
   m.sent_utime_us = utime_us;
   m.message_id = id;
@@ -28,11 +31,17 @@ std::optional<nlohmann::json> parse(const a3lcm::link_message_t& m, std::string*
     *error = "link message of " + std::to_string(m.payload.size()) + " bytes is over the limit";
     return std::nullopt;
   }
-  auto j = nlohmann::json::parse(m.payload.begin(), m.payload.end(), nullptr, false);
-  if (j.is_discarded() || !j.is_object()) {
-    *error = "link message " + std::to_string(m.message_id) + " is not a JSON object";
+  // An action whose args nest as deep as a reply may (common/json_text's default), a few levels down.
+  common::JsonLimits limits;
+  limits.max_depth += 8;
+  std::string problem;
+  auto parsed = common::try_parse_json_text(std::string_view(reinterpret_cast<const char*>(m.payload.data()), m.payload.size()), &problem, limits);
+  if (!parsed || !parsed->is_object()) {
+    *error = "link message " + std::to_string(m.message_id) + " is not a JSON object" +
+             (parsed ? std::string() : " (" + problem + ")");
     return std::nullopt;
   }
+  nlohmann::json& j = *parsed;
   if (!j.contains("turn") || !j["turn"].is_number_integer() || !j.contains("action_index") ||
       !j["action_index"].is_number_integer()) {
     *error = "link message " + std::to_string(m.message_id) + " lacks integer turn/action_index";

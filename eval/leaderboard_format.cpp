@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "common/json_text.hpp"
+
 namespace a3::eval {
 namespace {
 
@@ -137,7 +139,7 @@ void write_leaderboard(std::ostream& out, const std::vector<ModelSummary>& rows,
     case LeaderboardFormat::kJson: {
       nlohmann::ordered_json array = nlohmann::ordered_json::array();
       for (const auto& row : rows) array.push_back(row_json(row));
-      out << array.dump(2) << "\n";
+      out << common::dump_json_text(array, 2) << "\n";  // model names come from folder names
       return;
     }
     case LeaderboardFormat::kMarkdown: {

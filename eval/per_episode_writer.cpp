@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "common/json_text.hpp"
 #include "eval/leaderboard_format.hpp"
 
 namespace a3::eval {
@@ -94,7 +95,7 @@ std::string csv_value(const nlohmann::ordered_json& v) {
   if (v.is_string()) return csv_escape(v.get<std::string>());
   if (v.is_boolean()) return v.get<bool>() ? "1" : "0";
   if (v.is_number_float()) return format_double(v.get<double>());
-  return v.dump();
+  return common::dump_json_text(v);
 }
 
 }  // namespace

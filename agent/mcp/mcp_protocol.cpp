@@ -7,6 +7,8 @@
 #include <optional>
 #include <vector>
 
+#include "common/json_text.hpp"
+
 namespace a3::agent::mcp {
 namespace {
 
@@ -115,12 +117,13 @@ bool McpProtocol::wants_progress(const json& message) {
 }
 
 bool McpProtocol::handle_text(const std::string& text, const McpSend& send) {
-  json message = json::parse(text, nullptr, false);
-  if (message.is_discarded()) {
-    send(jsonrpc::make_error(nullptr, jsonrpc::kParseError, "parse error: the message is not valid JSON"));
+  std::string problem;
+  std::optional<json> message = common::try_parse_json_text(text, &problem);
+  if (!message) {
+    send(jsonrpc::make_error(nullptr, jsonrpc::kParseError, "parse error: the message is not usable JSON: " + problem));
     return true;
   }
-  return handle(message, send);
+  return handle(*message, send);
 }
 
 bool McpProtocol::handle(const json& message, const McpSend& send) {

@@ -13,6 +13,7 @@
 #include <tuple>
 
 #include "agent/llm/json_extract.hpp"
+#include "common/json_text.hpp"
 
 namespace a3::agent::model_server {
 namespace {
@@ -58,8 +59,13 @@ int64_t count_of(const json& usage, const char* key) {
 
 RecordedEpisode read_episode(const fs::path& path, int scenario, int episode_index) {
   const std::string where = path.string();
-  const ordered_json doc = ordered_json::parse(read_text(path), nullptr, false);
-  if (doc.is_discarded() || !doc.is_object()) throw std::invalid_argument(where + ": not a JSON object");
+  ordered_json doc;
+  try {
+    doc = common::parse_ordered_json_text(read_text(path), where);
+  } catch (const common::InputError& e) {
+    throw std::invalid_argument(e.what());
+  }
+  if (!doc.is_object()) throw std::invalid_argument(where + ": not a JSON object");
   const auto meta = doc.find("_meta");
   if (meta == doc.end() || !meta->is_object()) throw std::invalid_argument(where + ": no _meta object");
   if (!doc.contains("initial_state") || !doc["initial_state"].is_object()) {
@@ -211,8 +217,10 @@ const RecordedEpisode& CorpusResponder::match(const json& request, CorpusRequest
       const std::string& text = m["content"].get_ref<const std::string&>();
       for (const auto& span : llm::top_level_object_spans(text)) {
         if (!span.closed) continue;
-        const json object = json::parse(text.substr(span.begin, span.end - span.begin), nullptr, false);
-        if (object.is_discarded() || !object.is_object()) continue;
+        // A client's text: bounded depth before canonical_initial_state walks it.
+        const json object =
+            common::try_parse_json_text(std::string_view(text).substr(span.begin, span.end - span.begin)).value_or(json());
+        if (!object.is_object()) continue;
         const json& state = object.contains("initial_state") ? object["initial_state"] : object;
         if (const auto known = scenario_by_initial_state_.find(canonical_initial_state(state));
             known != scenario_by_initial_state_.end()) {

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cctype>
 
+#include "common/json_text.hpp"
+
 namespace a3::agent::model_server {
 namespace {
 
@@ -37,10 +39,14 @@ std::optional<ApiError> form_body_error(const std::string& media) {
 }
 
 std::optional<ApiError> parse_json_body(const std::string& body, const std::string& media, nlohmann::json& out) {
-  out = nlohmann::json::parse(body, nullptr, false);
-  if (!out.is_discarded()) return std::nullopt;
+  std::string problem;
+  if (auto parsed = common::try_parse_json_text(body, &problem)) {
+    out = std::move(*parsed);
+    return std::nullopt;
+  }
   if (media.empty() || is_json_type(media)) {
-    return ApiError{400, "the request body is not JSON (send a JSON object with Content-Type: application/json)",
+    return ApiError{400, "the request body is not JSON (" + problem +
+                             "); send a JSON object with Content-Type: application/json",
                     std::nullopt, "invalid_json"};
   }
   return unsupported(media, ", and the body is not JSON");

@@ -21,6 +21,7 @@
 #include "bridge/dronecan/reassembler.hpp"
 #include "bridge/dronecan/transfer.hpp"
 #include "common/clock.hpp"
+#include "common/json_text.hpp"
 #include "common/realtime_executor.hpp"
 #include "rigs/cli/command_registry.hpp"
 
@@ -77,7 +78,7 @@ int run_monitor(const MonitorArgs& args) {
       nlohmann::json fields;
       std::string error;
       if (type->decode_to_json(transfer.payload, transfer.size, fields, error)) {
-        body = fields.dump();
+        body = common::dump_json_text(fields);
       } else {
         ++decode_failures;
         body = "undecodable: " + error;
@@ -145,9 +146,9 @@ int run_send(const SendArgs& args) {
     }
     nlohmann::json fields;
     try {
-      fields = nlohmann::json::parse(args.fields);
-    } catch (const nlohmann::json::exception& e) {
-      throw std::runtime_error("the fields are not JSON: " + std::string(e.what()));
+      fields = common::parse_json_text(args.fields, "--fields");
+    } catch (const common::InputError& e) {
+      throw std::runtime_error(e.what());
     }
     bridge::Payload payload;
     std::string error;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "common/json_text.hpp"
 #include "eval/corpus_scorer.hpp"
 #include "eval/episode_schema.hpp"
 #include "rigs/cli/command_registry.hpp"
@@ -44,7 +45,7 @@ int run_validate(const ValidateArgs& args) {
           for (const auto& v : check.violations) {
             row["violations"].push_back({{"path", v.json_path}, {"rule", v.rule}, {"message", v.message}});
           }
-          std::cout << row.dump() << "\n";
+          std::cout << common::dump_json_text(row) << "\n";  // file names need not be UTF-8
           return;
         }
         if (check.status == eval::EpisodeStatus::kInvalid) {

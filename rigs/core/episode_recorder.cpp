@@ -7,6 +7,8 @@
 #include "a3lcm/node_stats_t.hpp"
 #include "common/channels.hpp"
 #include "common/node_stats.hpp"
+#include "common/json_text.hpp"
+#include "eval/json_shape.hpp"
 
 namespace a3::rigs {
 
@@ -25,11 +27,11 @@ void EpisodeRecorderNode::start(common::Executor&, common::Bus& bus) {
   bus.subscribe<a3lcm::episode_event_t>(ch::kEpisode, [this](const a3lcm::episode_event_t& e, int64_t) {
     std::lock_guard<std::mutex> lock(mutex_);
     if (e.kind == "turn_end") {
-      auto j = nlohmann::json::parse(e.detail_json, nullptr, false);
-      if (!j.is_discarded()) rec_.turns.push_back(std::move(j));
+      // A turn holds a reply's args (nested up to common/json_text's default) a few levels down.
+      if (auto j = common::try_parse_json_text(e.detail_json, nullptr, eval::episode_json_limits())) rec_.turns.push_back(std::move(*j));
     } else if (e.kind == "dialogue_end") {
       rec_.dialogue_ended = true;
-      auto j = nlohmann::json::parse(e.detail_json, nullptr, false);
+      const auto j = common::try_parse_json_text(e.detail_json).value_or(nlohmann::json());
       rec_.dialogue_end_reason = j.is_object() ? j.value("reason", "") : "";
     }
   });

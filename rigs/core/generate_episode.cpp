@@ -5,6 +5,7 @@
 #include <ctime>
 
 #include "agent/llm/json_extract.hpp"
+#include "common/json_text.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -43,7 +44,7 @@ ordered_json episode_meta(int64_t seed, double gen_time_s, int attempts, const a
   meta["gen_time_s"] = gen_time_s;
   meta["attempts_used"] = attempts;
   meta["generation_failed"] = false;
-  meta["usage"] = ordered_json::parse(usage.to_json().dump());
+  meta["usage"] = ordered_json::parse(common::dump_json_text(usage.to_json()));  // our own value: text is JSON
   return meta;
 }
 
@@ -52,14 +53,25 @@ ordered_json episode_meta(int64_t seed, double gen_time_s, int attempts, const a
 bool is_endpoint_failure(const agent::llm::LlmCallResult& result) { return agent::llm::is_endpoint_failure(result); }
 
 ordered_json episode_object_from_reply(const std::string& content, std::string& problem) {
-  ordered_json whole = ordered_json::parse(content, nullptr, false);
-  if (!whole.is_discarded() && whole.is_object()) return whole;
+  std::string first_problem;
+  const auto object_in = [&](std::string_view text) -> std::optional<ordered_json> {
+    try {
+      ordered_json j = common::parse_ordered_json_text(text, "the reply's JSON object");
+      if (j.is_object()) return j;
+    } catch (const common::InputError& e) {
+      if (first_problem.empty()) first_problem = e.what();
+    }
+    return std::nullopt;
+  };
+  if (auto whole = object_in(content)) return std::move(*whole);
+  first_problem.clear();  // prose around an object is no problem; the spans' are
   for (const auto& span : agent::llm::top_level_object_spans(content)) {
     if (!span.closed) continue;
-    ordered_json part = ordered_json::parse(content.substr(span.begin, span.end - span.begin), nullptr, false);
-    if (!part.is_discarded() && part.is_object()) return part;
+    if (auto part = object_in(std::string_view(content).substr(span.begin, span.end - span.begin))) return std::move(*part);
   }
-  problem = content.empty() ? "the reply is empty" : "the reply holds no JSON object: " + quote_start(content);
+  problem = content.empty() ? "the reply is empty"
+            : !first_problem.empty() ? first_problem + " (the reply starts " + quote_start(content) + ")"
+                                     : "the reply holds no JSON object: " + quote_start(content);
   return ordered_json(ordered_json::value_t::discarded);
 }
 

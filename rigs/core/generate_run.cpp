@@ -15,8 +15,10 @@
 #include <stdexcept>
 #include <thread>
 
+#include "common/json_text.hpp"
 #include "eval/episode_schema.hpp"
 #include "eval/json_schema_validator.hpp"
+#include "eval/json_shape.hpp"
 #include "eval/scoring_profile.hpp"
 
 namespace a3::rigs {
@@ -35,8 +37,8 @@ std::optional<int64_t> recorded_seed(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream text;
   text << in.rdbuf();
-  const nlohmann::json doc = nlohmann::json::parse(text.str(), nullptr, false);
-  if (doc.is_discarded() || !doc.is_object() || !doc.contains("_meta") || !doc["_meta"].is_object()) return {};
+  const nlohmann::json doc = common::try_parse_json_text(text.str(), nullptr, eval::episode_json_limits()).value_or(nlohmann::json());
+  if (!doc.is_object() || !doc.contains("_meta") || !doc["_meta"].is_object()) return {};
   const auto& seed = doc["_meta"].value("seed", nlohmann::json());
   if (!seed.is_number()) return {};
   return seed.is_number_float() ? static_cast<int64_t>(seed.get<double>()) : seed.get<int64_t>();

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/json_text.hpp"
 #include "eval/corpus.hpp"
 #include "rigs/core/builtin_scenarios.hpp"
 #include "rigs/core/scenario.hpp"
@@ -30,8 +31,13 @@ ordered_json read_json(const fs::path& path) {
   std::ostringstream text;
   text << in.rdbuf();
   if (!in) throw std::invalid_argument(path.string() + ": cannot read");
-  ordered_json doc = ordered_json::parse(text.str(), nullptr, false);
-  if (doc.is_discarded() || !doc.is_object()) throw std::invalid_argument(path.string() + ": not a JSON object");
+  ordered_json doc;
+  try {
+    doc = common::parse_ordered_json_text(text.str(), path.string());
+  } catch (const common::InputError& e) {
+    throw std::invalid_argument(e.what());
+  }
+  if (!doc.is_object()) throw std::invalid_argument(path.string() + ": not a JSON object");
   return doc;
 }
 
@@ -92,8 +98,8 @@ std::vector<GenerateScenario> load_generate_scenarios(const std::vector<std::str
       pending.push_back({name ? std::optional<int>(name->scenario) : std::nullopt,
                          scenario_from_document(read_json(spec), spec)});
     } else if (builtin != builtin_scenarios().end()) {
-      const ordered_json doc = ordered_json::parse(std::string(builtin->second), nullptr, false);
-      if (doc.is_discarded() || !doc.is_object()) throw std::logic_error("built-in scenario " + spec + " is not JSON");
+      const ordered_json doc = common::parse_ordered_json_text(builtin->second, "built-in scenario " + spec);
+      if (!doc.is_object()) throw std::logic_error("built-in scenario " + spec + " is not a JSON object");
       pending.push_back({std::nullopt, scenario_from_document(doc, "built-in " + spec)});
     } else {
       std::string names;

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "common/json_file.hpp"
+#include "common/json_text.hpp"
 #include "rigs/core/builtin_scenarios.hpp"
 
 namespace a3::rigs {
@@ -261,7 +262,7 @@ std::vector<std::string> builtin_scenario_names() {
 
 Scenario load_scenario(const std::string& spec, const std::filesystem::path& shared_dir) {
   for (const auto& [name, text] : builtin_scenarios()) {
-    if (name == spec) return scenario_from_json(nlohmann::json::parse(text), "scenario " + std::string(name), ".");
+    if (name == spec) return scenario_from_json(common::parse_json_text(text, "scenario " + std::string(name)), "scenario " + std::string(name), ".");
   }
   if (spec.rfind("alphabench:", 0) == 0) {
     std::filesystem::path p = spec.substr(11);

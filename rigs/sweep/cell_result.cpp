@@ -3,9 +3,12 @@
 
 #include <cmath>
 #include <fstream>
+#include <sstream>
+#include "common/json_text.hpp"
 
 #include "eval/episode_reader.hpp"
 #include "eval/episode_schema.hpp"
+#include "eval/json_shape.hpp"
 #include "eval/pillars.hpp"
 
 namespace a3::rigs::sweep {
@@ -18,8 +21,10 @@ CellCheck check_cell(const std::filesystem::path& dir, const SweepCell& cell) {
     check.why_not = "no episode.json";
     return check;
   }
-  check.episode = nlohmann::json::parse(in, nullptr, false);
-  if (check.episode.is_discarded() || !check.episode.is_object()) {
+  std::ostringstream file_text;
+  file_text << in.rdbuf();
+  check.episode = common::try_parse_json_text(file_text.str(), nullptr, eval::episode_json_limits()).value_or(nlohmann::json());
+  if (!check.episode.is_object()) {
     check.why_not = "episode.json is not a JSON object (half-written?)";
     return check;
   }
