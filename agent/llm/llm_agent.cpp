@@ -59,6 +59,11 @@ LlmAgent::LlmAgent(ChatFunction chat, std::string secret, const ToolCatalog& too
   if (options_.max_attempts < 1) throw std::invalid_argument("LlmAgent: max_attempts must be >= 1");
 }
 
+void LlmAgent::stop_deciding() {
+  stopped_ = true;
+  if (client_) client_->abort_calls();
+}
+
 ChatRequest LlmAgent::request(const AgentContext& c, int attempt, const FailedAttempt* failure) const {
   if (options_.mode == ToolMode::kNative) return native_request(c, tools_, calls_, attempt, failure, options_.dialogue);
   return ChatRequest{build_turn_messages(c, tools_, attempt, failure, options_.dialogue)};
@@ -108,14 +113,20 @@ AgentDecision LlmAgent::decide(const AgentContext& context) {
   FailedAttempt failure;
   bool done = false;
   int attempt = 0;
-  while (!done && attempt < options_.max_attempts) {
+  bool interrupted = false;
+  while (!done && !interrupted && attempt < options_.max_attempts) {
     ++attempt;
     bool threw = false;
     const LlmCallResult result = call(request(context, attempt, attempt > 1 ? &failure : nullptr), threw);
     usage += result.usage;
     nlohmann::json entry = attempt_entry(attempt, result, options_.mode);
     if (!result.model.empty()) entry["model"] = scrub(result.model);
-    if (!result.ok) {
+    if (!result.ok && (result.interrupted || stopped_)) {
+      interrupted = true;
+      entry["outcome"] = "interrupted";
+      entry["endpoint_failure"] = false;
+      entry["problems"] = {scrub(result.error.empty() ? "interrupted: the run was stopped" : result.error)};
+    } else if (!result.ok) {
       const std::string error = scrub(result.error.empty() ? "the call failed (no reason given)" : result.error);
       entry["outcome"] = "call_failed";
       entry["endpoint_failure"] = !threw && is_endpoint_failure(result);
@@ -140,7 +151,13 @@ AgentDecision LlmAgent::decide(const AgentContext& context) {
   }
   d.attempts = attempt;
   d.usage = usage.to_json();
-  if (!done) {
+  if (interrupted) {
+    d.error = "interrupted: the run was stopped during attempt " + std::to_string(attempt) + " of the turn, after " +
+              std::to_string(seconds_since(start_ns)) + " s";
+    d.intent.clear();
+    d.text.clear();
+    d.actions = nlohmann::json::array();
+  } else if (!done) {
     d.error = "no usable reply after " + std::to_string(attempt) + " attempt" + (attempt == 1 ? "" : "s") + ": " +
               joined(failure.problems);
     d.intent.clear();

@@ -14,9 +14,11 @@
 // endpoint's, and for a streamed answer the time to the first and the last token), the summed
 // token usage, and the measured wall time of the whole turn as latency_s. After the last failed
 // attempt the decision has an error and no actions: the turn is recorded as failed and the
-// episode goes on. The API key stays inside the client; anything recorded is also scrubbed of it.
+// episode goes on. A call ended by stop_deciding() (Ctrl-C) is an attempt with outcome
+// "interrupted" and no further attempt: the decision's error starts with "interrupted: ". The API key stays inside the client; anything recorded is also scrubbed of it.
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <string>
@@ -49,6 +51,9 @@ class LlmAgent final : public Agent {
 
   std::string name() const override { return "llm"; }
   AgentDecision decide(const AgentContext& context) override;
+  // Ctrl-C: the call in flight ends within 50 ms and decide() returns the turn as interrupted
+  // (its attempt log kept); later decisions are interrupted at once. Any thread.
+  void stop_deciding() override;
 
  private:
   // One attempt's usable turn, or its problems.
@@ -69,6 +74,7 @@ class LlmAgent final : public Agent {
   const ToolCatalog& tools_;
   LlmAgentOptions options_;
   TurnCallMemory calls_;  // native mode: the calls of each turn this agent made
+  std::atomic<bool> stopped_{false};
 };
 
 }  // namespace a3::agent::llm

@@ -7,6 +7,8 @@
 #include <signal.h>
 
 #include <algorithm>
+#include <atomic>
+#include <condition_variable>
 #include <cctype>
 #include <chrono>
 #include <cstdlib>
@@ -178,9 +180,29 @@ curl_slist* request_headers(const std::string& key, bool stream) {
   return headers;
 }
 
+// Runs the transfer set up on `curl` through `multi`, polling every 50 ms so that a stop
+// (`abort`) ends it within that time: CURLE_ABORTED_BY_CALLBACK then.
+CURLcode run_transfer(CURLM* multi, CURL* curl, const std::atomic<bool>& abort) {
+  curl_multi_add_handle(multi, curl);
+  CURLcode code = CURLE_ABORTED_BY_CALLBACK;
+  for (int running = 1; running > 0 && !abort.load();) {
+    if (curl_multi_perform(multi, &running) != CURLM_OK) {
+      code = CURLE_FAILED_INIT;
+      break;
+    }
+    int queued = 0;
+    while (CURLMsg* msg = curl_multi_info_read(multi, &queued)) {
+      if (msg->msg == CURLMSG_DONE && msg->easy_handle == curl) code = msg->data.result;
+    }
+    if (running > 0) curl_multi_poll(multi, nullptr, 0, 50, nullptr);
+  }
+  curl_multi_remove_handle(multi, curl);
+  return code;
+}
+
 // One POST of `body` to `url` on the kept-alive handle.
-void perform(CURL* curl, const std::string& url, const std::string& body, curl_slist* headers, const LlmEndpoint& e,
-             Exchange& ex) {
+void perform(CURLM* multi, CURL* curl, const std::string& url, const std::string& body, curl_slist* headers,
+             const LlmEndpoint& e, const std::atomic<bool>& abort, Exchange& ex) {
   char curl_error[CURL_ERROR_SIZE] = {0};
   curl_easy_reset(curl);  // options only: the connection cache stays (keep-alive)
   curl_easy_setopt(curl, CURLOPT_URL, url.c_str());
@@ -203,7 +225,7 @@ void perform(CURL* curl, const std::string& url, const std::string& body, curl_s
   ex.start = Clock::now();
   {
     const SigpipeBlock no_sigpipe;
-    ex.code = curl_easy_perform(curl);
+    ex.code = run_transfer(multi, curl, abort);
   }
   ex.curl_error = curl_error;
   curl_easy_getinfo(curl, CURLINFO_RESPONSE_CODE, &ex.http_status);
@@ -238,6 +260,9 @@ std::string call_error(const std::string& url, const std::vector<LlmAttempt>& at
 
 std::string describe_curl_error(const Exchange& ex, const LlmEndpoint& e) {
   switch (ex.code) {
+    case CURLE_ABORTED_BY_CALLBACK:
+      return "interrupted: the run was stopped after " + std::to_string(seconds_since(ex.start)) +
+             " s of this attempt";
     case CURLE_OPERATION_TIMEDOUT:
       return "timed out (connect timeout " + std::to_string(e.connect_timeout_s) + " s, total timeout " +
              std::to_string(e.total_timeout_s) + " s): " + ex.curl_error;
@@ -359,14 +384,29 @@ LlmClient::LlmClient(LlmEndpoint endpoint) : endpoint_(std::move(endpoint)) {
   if (endpoint_.max_response_bytes == 0) throw std::invalid_argument("LLM endpoint: max_response_bytes must be > 0");
   check_key(endpoint_.api_key, "LLM endpoint");
   if (endpoint_.provider.empty()) endpoint_.provider = provider_from_base_url(endpoint_.base_url);
-  sleep_ = [](double s) { std::this_thread::sleep_for(std::chrono::duration<double>(s)); };
+  sleep_ = [this](double s) { wait_unless_aborted(s); };
   init_curl_once();
   curl_ = curl_easy_init();
-  if (curl_ == nullptr) throw std::runtime_error("libcurl: curl_easy_init failed");
+  multi_ = curl_multi_init();
+  if (curl_ == nullptr || multi_ == nullptr) throw std::runtime_error("libcurl: curl_easy_init/curl_multi_init failed");
 }
 
 LlmClient::~LlmClient() {
   if (curl_ != nullptr) curl_easy_cleanup(static_cast<CURL*>(curl_));
+  if (multi_ != nullptr) curl_multi_cleanup(static_cast<CURLM*>(multi_));
+}
+
+void LlmClient::abort_calls() {
+  {
+    const std::lock_guard<std::mutex> lock(abort_mutex_);
+    aborted_ = true;
+  }
+  abort_wake_.notify_all();
+}
+
+void LlmClient::wait_unless_aborted(double seconds) {
+  std::unique_lock<std::mutex> lock(abort_mutex_);
+  abort_wake_.wait_for(lock, std::chrono::duration<double>(seconds), [this] { return aborted_.load(); });
 }
 
 void LlmClient::set_sleep_for_tests(std::function<void(double)> sleep) { sleep_ = std::move(sleep); }
@@ -374,7 +414,7 @@ void LlmClient::set_sleep_for_tests(std::function<void(double)> sleep) { sleep_ 
 LlmCallResult LlmClient::chat(const std::vector<ChatMessage>& messages) { return send(ChatRequest{messages}); }
 
 bool is_endpoint_failure(const LlmCallResult& result) {
-  if (result.ok) return false;
+  if (result.ok || result.interrupted) return false;
   const int s = result.http_status;
   return s == 0 || s == 401 || s == 403 || s == 404 || s == 408 || s == 429 || s >= 500;
 }
@@ -460,6 +500,12 @@ LlmCallResult LlmClient::send(const ChatRequest& request) {
   curl_slist* headers = request_headers(endpoint_.api_key, endpoint_.stream);
   int retries_made = 0;
   std::string final_error;
+  if (aborted_) {
+    curl_slist_free_all(headers);
+    result.interrupted = true;
+    result.error = "POST " + url + ": interrupted: the run was stopped before the call";
+    return result;
+  }
   for (;;) {
     const SentParameters sent = parameters_to_send(endpoint_, request, refused_);
     std::string request_body;
@@ -472,8 +518,12 @@ LlmCallResult LlmClient::send(const ChatRequest& request) {
     Exchange ex;
     ex.max_bytes = endpoint_.max_response_bytes;
     ex.stream_requested = endpoint_.stream;
-    perform(static_cast<CURL*>(curl_), url, request_body, headers, endpoint_, ex);
+    perform(static_cast<CURLM*>(multi_), static_cast<CURL*>(curl_), url, request_body, headers, endpoint_, aborted_, ex);
     Verdict v = judge(ex, url, endpoint_, sent, refused_, result);
+    if (ex.code == CURLE_ABORTED_BY_CALLBACK) {  // a stop is no network error: no retry
+      result.interrupted = true;
+      v.retryable = false;
+    }
     if (v.adapted) {
       result.attempts.push_back(v.attempt);
       continue;
@@ -491,6 +541,11 @@ LlmCallResult LlmClient::send(const ChatRequest& request) {
     }
     ++retries_made;
     if (v.attempt.backoff_s > 0.0) sleep_(v.attempt.backoff_s);
+    if (aborted_) {
+      result.interrupted = true;
+      final_error = "interrupted: the run was stopped while waiting to retry";
+      break;
+    }
   }
   curl_slist_free_all(headers);
   result.wall_time_s = seconds_since(start);

@@ -13,7 +13,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <atomic>
+#include <condition_variable>
 #include <cstdint>
+#include <mutex>
 #include <functional>
 #include <optional>
 #include <string>
@@ -110,9 +113,11 @@ struct LlmCallResult {
   bool streamed = false;      // the answer came as server-sent events
   std::optional<double> ttft_s;  // streamed: of the usable attempt, request start to first token
   std::optional<double> ttlt_s;  // streamed: ... to the last token
+  bool interrupted = false;   // LlmClient::abort_calls() ended it (not the endpoint's failure)
 };
 
-// Whether a failed call is the endpoint's fault rather than the request's: no HTTP answer
+// Whether a failed call is the endpoint's fault rather than the request's (never an interrupted
+// one): no HTTP answer
 // (unreachable, timeout, cut), 401, 403, 404, 408, 429 or 5xx (after the client's retries).
 // `a3rig generate` stops on it; `a3rig run` ends endpoint_failed on it (rigs/core/llm_run.hpp).
 bool is_endpoint_failure(const LlmCallResult& result);
@@ -139,11 +144,20 @@ class LlmClient {
   const RefusedParameters& refused_parameters() const { return refused_; }
   // Replaces sleeping between retries (tests); receives the backoff in seconds.
   void set_sleep_for_tests(std::function<void(double)> sleep);
+  // From any thread (Ctrl-C): the call in flight ends within 50 ms as interrupted (no retry,
+  // a backoff wait wakes), and every later call returns interrupted at once. Sticky.
+  void abort_calls();
 
  private:
+  void wait_unless_aborted(double seconds);
+
   LlmEndpoint endpoint_;
   std::function<void(double)> sleep_;
-  void* curl_ = nullptr;  // CURL*, reused across calls (keep-alive)
+  void* curl_ = nullptr;   // CURL*, reused across calls (keep-alive)
+  void* multi_ = nullptr;  // CURLM*: runs each transfer so that a stop can end it
+  std::atomic<bool> aborted_{false};
+  std::mutex abort_mutex_;
+  std::condition_variable abort_wake_;
   RefusedParameters refused_;
 };
 

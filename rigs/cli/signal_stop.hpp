@@ -1,6 +1,7 @@
 // Ctrl-C and SIGTERM for long-running commands: the first asks for a clean stop (the command
-// polls stop_requested(), or a StopWatcher turns it into its own stop flag), a second one ends
-// the program at once.
+// polls stop_requested(), or a StopWatcher turns it into its own stop flag; an LLM call in
+// flight ends within 0.1 s), a second one ends the program at once with exit status 130 and
+// one line on stderr saying that nothing more is written (the episode in progress is lost).
 #pragma once
 
 #include <atomic>
@@ -8,6 +9,8 @@
 #include <csignal>
 #include <cstdlib>
 #include <thread>
+
+#include <unistd.h>
 
 namespace a3::rigs {
 
@@ -18,7 +21,10 @@ inline std::atomic<int>& stop_signal_count() {
 
 inline void install_stop_signals() {
   auto handler = [](int) {
-    if (stop_signal_count().fetch_add(1) >= 1) std::_Exit(130);
+    if (stop_signal_count().fetch_add(1) < 1) return;
+    static constexpr char kLine[] = "a3rig: second interrupt: exiting now (status 130); nothing more is written\n";
+    [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, kLine, sizeof kLine - 1);
+    std::_Exit(130);
   };
   std::signal(SIGINT, handler);
   std::signal(SIGTERM, handler);

@@ -34,8 +34,14 @@ std::unique_ptr<agent::Agent> make_llm_agent(const RunOptions& o) {
                                                 agent::ToolCatalog::builtin(), options);
 }
 
+// A 16-token answer takes seconds; an endpoint that takes the connection and stays silent must
+// not hold the run for the whole --llm-timeout (180 s by default), twice.
+constexpr double kProbeTimeout_s = 10.0;
+
 void check_llm_endpoint(const agent::llm::LlmEndpoint& endpoint) {
   agent::llm::LlmEndpoint probe = endpoint;
+  probe.total_timeout_s = std::min(endpoint.total_timeout_s, kProbeTimeout_s);
+  probe.connect_timeout_s = std::min(endpoint.connect_timeout_s, kProbeTimeout_s);
   probe.json_output = false;
   probe.stream = false;
   probe.max_tokens = 16;

@@ -162,6 +162,40 @@ int64_t unix_now_us() {
   return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
 
+// Ctrl-C while the agent decides (real time): the decision is stopped and its turn, recorded
+// as interrupted, gets up to 2 s of wall time to reach the recorder.
+void record_interrupted_turn(RigNodes& n) {
+  if (!n.conversation || !n.conversation->interrupt()) return;
+  const auto deadline = SteadyClock::now() + std::chrono::seconds(2);
+  while (SteadyClock::now() < deadline) {
+    if (n.conversation->finished() && n.recorder->snapshot().turns.size() >= n.conversation->turns().size()) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
+// Virtual time runs the agent in place, on this thread: a watcher stops its decision on Ctrl-C
+// so that the loop below gets to see the stop.
+class InterruptWatcher {
+ public:
+  InterruptWatcher(const std::atomic<bool>* stop, RigNodes& n) {
+    if (stop == nullptr || !n.conversation) return;
+    thread_ = std::thread([this, stop, &n] {
+      while (!done_ && !stop->load()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      if (!done_) n.conversation->interrupt();
+    });
+  }
+  ~InterruptWatcher() {
+    done_ = true;
+    if (thread_.joinable()) thread_.join();
+  }
+  InterruptWatcher(const InterruptWatcher&) = delete;
+  InterruptWatcher& operator=(const InterruptWatcher&) = delete;
+
+ private:
+  std::atomic<bool> done_{false};
+  std::thread thread_;
+};
+
 RunResult run_virtual(const Scenario& s, const RunOptions& o, const RigConfigs& cfg, const ProgressFn& progress,
                       const std::atomic<bool>* stop) {
   const auto wall0 = SteadyClock::now();
@@ -175,6 +209,7 @@ RunResult run_virtual(const Scenario& s, const RunOptions& o, const RigConfigs& 
   Reporter report{progress};
   std::string status;
   double t = 0.0, dialogue_end_s = -1.0, crash_s = -1.0;
+  const InterruptWatcher interrupt_watcher(stop, n);
   try {
     while (status.empty()) {
       t += 0.5;
@@ -303,6 +338,7 @@ RunResult run_real(const Scenario& s, const RunOptions& o, const RigConfigs& cfg
       progress(status_line(mission_s, wall_s, r));
     }
   }
+  if (status == "interrupted") record_interrupted_turn(n);
   const double wall_s = std::chrono::duration<double>(SteadyClock::now() - wall0).count();
   if (children) children->stop();
   threads->stop_all_but_first();
