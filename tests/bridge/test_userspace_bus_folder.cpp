@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "bridge/can/userspace_bus.hpp"
+#include "bridge/can/userspace_bus_folder.hpp"
 
 namespace a3::bridge {
 namespace {
@@ -83,6 +84,46 @@ TEST_F(UserspaceBusFolder, MembersThatComeAndGoAtOnceAlwaysJoin) {
   for (auto& t : threads) t.join();
   EXPECT_EQ(failures.load(), 0);
   EXPECT_FALSE(std::filesystem::exists(bus_dir("churn")));
+}
+
+// A child process that joins the bus and dies without leaving (as a killed process does).
+void crash_on_bus(const std::string& name, const UserspaceCanOptions& options) {
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    new UserspaceCanBus(name, options);
+    ::_exit(0);
+  }
+  int status = -1;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+}
+
+TEST_F(UserspaceBusFolder, TheRunsGuardRemovesItsBusAfterAChildCrashed) {
+  const std::string name = "a3rig-run-" + std::to_string(::getpid());
+  {
+    const UserspaceBusFolderGuard guard("userspace:" + name, options_);
+    EXPECT_EQ(guard.directory(), bus_dir(name));
+    crash_on_bus(name, options_);
+    ASSERT_TRUE(std::filesystem::exists(bus_dir(name) / ".lock"));
+  }
+  EXPECT_FALSE(std::filesystem::exists(bus_dir(name)));
+}
+
+TEST_F(UserspaceBusFolder, TheRunsGuardRemovesTheFoldersOfRunsThatWereKilled) {
+  // Runs 999999990.. are not processes (pid_max is at most 4194304); 1 is init, alive.
+  crash_on_bus("a3rig-run-999999990", options_);
+  crash_on_bus("a3rig-run-1", options_);
+  crash_on_bus("other-999999991", options_);
+  ASSERT_TRUE(std::filesystem::exists(bus_dir("a3rig-run-999999990")));
+  const UserspaceBusFolderGuard guard("userspace:a3rig-run-" + std::to_string(::getpid()), options_);
+  EXPECT_FALSE(std::filesystem::exists(bus_dir("a3rig-run-999999990")));
+  EXPECT_TRUE(std::filesystem::exists(bus_dir("a3rig-run-1"))) << "its process is alive";
+  EXPECT_TRUE(std::filesystem::exists(bus_dir("other-999999991"))) << "not this program's kind of bus";
+}
+
+TEST_F(UserspaceBusFolder, AGuardOfAnotherKindOfBusDoesNothing) {
+  EXPECT_TRUE(UserspaceBusFolderGuard("socketcan:can0", options_).directory().empty());
+  EXPECT_TRUE(UserspaceBusFolderGuard("bogus:x", options_).directory().empty());
 }
 
 }  // namespace
