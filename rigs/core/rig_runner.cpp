@@ -13,6 +13,7 @@
 #include "agent/vehicle/airspace_monitor_node.hpp"
 #include "agent/vehicle/tool_server_node.hpp"
 #include "bridge/can/can_bus_factory.hpp"
+#include "bridge/can/userspace_bus_folder.hpp"
 #include "bridge/can/virtual_can_bus.hpp"
 #include "common/runtime.hpp"
 #include "linkemu/link_emulator_node.hpp"
@@ -277,6 +278,8 @@ RunResult run_real(const Scenario& s, const RunOptions& o, const RigConfigs& cfg
   const auto wall0 = SteadyClock::now();
   const int64_t unix0 = unix_now_us();
   const std::string can_spec = o.can == "userspace" ? "userspace:a3rig-run-" + std::to_string(::getpid()) : o.can;
+  // The bus's folder goes at every way out of this function, also after a child's crash.
+  const bridge::UserspaceBusFolderGuard can_folder(can_spec);
   const std::string lcm_url = private_lcm_url(o.lcm_url);
   {
     common::LcmBus probe(lcm_url);
