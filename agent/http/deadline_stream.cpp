@@ -35,10 +35,20 @@ void address_of(const sockaddr_storage& address, socklen_t length, std::string& 
 DeadlineStream::DeadlineStream(int socket, milliseconds write_timeout, std::function<bool()> stopping)
     : socket_(socket), write_timeout_(write_timeout), stopping_(std::move(stopping)) {}
 
-void DeadlineStream::set_read_deadline(Clock::time_point deadline, std::string what) {
+void DeadlineStream::begin_request_head(Clock::time_point deadline) {
   read_window_start_ = Clock::now();
   read_deadline_ = deadline;
-  reading_what_ = std::move(what);
+  reading_what_ = "request head";
+  recording_head_ = true;
+  head_too_long_ = false;
+  head_.clear();
+}
+
+void DeadlineStream::begin_request_body(Clock::time_point deadline) {
+  read_window_start_ = Clock::now();
+  read_deadline_ = deadline;
+  reading_what_ = "request body";
+  recording_head_ = false;
 }
 
 std::string DeadlineStream::timeout_message() const {
@@ -86,6 +96,10 @@ ssize_t DeadlineStream::read(char* ptr, size_t size) {
   }
   const std::size_t n = std::min(size, buffer_end_ - buffer_begin_);
   std::memcpy(ptr, buffer_.data() + buffer_begin_, n);
+  if (recording_head_ && !head_too_long_) {
+    head_too_long_ = head_.size() + n > kMaxRecordedHead;
+    if (!head_too_long_) head_.append(ptr, n);
+  }
   buffer_begin_ += n;
   return static_cast<ssize_t>(n);
 }

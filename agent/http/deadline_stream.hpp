@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <functional>
 #include <string>
+#include <string_view>
 
 namespace a3::agent::http {
 
@@ -22,8 +23,15 @@ class DeadlineStream final : public httplib::Stream {
   // `stopping`: polled while waiting; true ends every wait as a failure.
   DeadlineStream(int socket, std::chrono::milliseconds write_timeout, std::function<bool()> stopping);
 
-  // Reads from now on must end by `deadline`; `what` names the part being read ("request head").
-  void set_read_deadline(Clock::time_point deadline, std::string what);
+  // A request's head begins: reads must end by `deadline`, and the bytes read are kept (up to
+  // kMaxRecordedHead) as the head's exact text, which httplib's parsed headers are not (it
+  // percent-decodes header values and its get_header_value() ends at a NUL byte).
+  void begin_request_head(Clock::time_point deadline);
+  // Its body begins: reads must end by `deadline`; the head's text stays as it was.
+  void begin_request_body(Clock::time_point deadline);
+  // The head's bytes as received; empty when it was longer than kMaxRecordedHead.
+  std::string_view request_head() const { return head_too_long_ ? std::string_view() : std::string_view(head_); }
+  static constexpr std::size_t kMaxRecordedHead = 64u << 10;
   bool timed_out() const { return timed_out_; }
   // "request head not received within 10 s", for the 408.
   std::string timeout_message() const;
@@ -50,6 +58,9 @@ class DeadlineStream final : public httplib::Stream {
   Clock::time_point read_deadline_ = Clock::time_point::max();
   Clock::time_point read_window_start_ = Clock::now();
   std::string reading_what_ = "request";
+  bool recording_head_ = false;
+  bool head_too_long_ = false;
+  std::string head_;
   bool timed_out_ = false;
   std::array<char, 4096> buffer_{};
   std::size_t buffer_begin_ = 0;

@@ -24,6 +24,7 @@ constexpr double kOverLimitHeaderTimeout_s = 2.0;
 
 // What the handlers of one connection need to know about it (set on its thread).
 struct ConnectionState {
+  const DeadlineStream* stream = nullptr;
   bool over_limit = false;
   int max_connections = 0;
   bool close_after_response = false;
@@ -93,6 +94,10 @@ GuardedServer::GuardedServer(HttpLimits limits, std::size_t max_body_bytes, Refu
   });
 }
 
+std::string_view GuardedServer::current_request_head() {
+  return t_connection == nullptr ? std::string_view() : t_connection->stream->request_head();
+}
+
 bool GuardedServer::bind_to_port(const std::string& host, int port, int socket_flags) {
   if (!httplib::Server::bind_to_port(host, port, socket_flags)) return false;
   widen_listen_backlog();
@@ -131,19 +136,19 @@ bool GuardedServer::process_and_close_socket(socket_t sock) {
 }
 
 bool GuardedServer::serve_connection(socket_t sock, bool over_limit) {
-  ConnectionState state{over_limit, limits_.max_connections, false};
-  t_connection = &state;
   const auto stopping = [this] { return svr_sock_ == INVALID_SOCKET; };
   DeadlineStream stream(sock, to_ms(limits_.write_timeout_s), stopping);
+  ConnectionState state{&stream, over_limit, limits_.max_connections, false};
+  t_connection = &state;
   const double header_timeout_s =
       over_limit ? std::min(limits_.header_timeout_s, kOverLimitHeaderTimeout_s) : limits_.header_timeout_s;
   bool served = false;
   for (std::size_t left = keep_alive_max_count_; left > 0 && !stopping(); --left) {
     if (!stream.wait_readable(std::chrono::seconds(keep_alive_timeout_sec_))) break;
-    stream.set_read_deadline(Clock::now() + to_ms(header_timeout_s), "request head");
+    stream.begin_request_head(Clock::now() + to_ms(header_timeout_s));
     bool client_closes = false;
     served = process_request(stream, left == 1 || over_limit, client_closes, [&](httplib::Request&) {
-      stream.set_read_deadline(Clock::now() + to_ms(limits_.body_timeout_s), "request body");
+      stream.begin_request_body(Clock::now() + to_ms(limits_.body_timeout_s));
     });
     if (stream.timed_out()) {
       send_timeout(sock, stream.timeout_message());

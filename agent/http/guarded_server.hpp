@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "agent/http/http_limits.hpp"
 
@@ -33,6 +34,9 @@ class GuardedServer final : public httplib::Server {
   int bind_to_any_port(const std::string& host, int socket_flags = 0);
 
   int open_connections() const { return open_connections_; }
+
+  // The exact bytes of the head of the request being handled on this thread (empty elsewhere).
+  static std::string_view current_request_head();
 
  private:
   // httplib calls it (on a ConnectionThreads thread) for every accepted socket.

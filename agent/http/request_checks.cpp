@@ -4,6 +4,9 @@
 #include <httplib.h>
 #include <openssl/crypto.h>
 
+#include <cctype>
+#include <vector>
+
 namespace a3::agent::http {
 namespace {
 
@@ -27,6 +30,38 @@ std::string shown(const std::string& value) {
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
   }
   return out + (value.size() > 40 ? "..." : "");
+}
+
+bool is_space_or_tab(char c) { return c == ' ' || c == '\t'; }
+
+bool equals_ignoring_case(std::string_view a, std::string_view lower) {
+  if (a.size() != lower.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (std::tolower(static_cast<unsigned char>(a[i])) != lower[i]) return false;
+  }
+  return true;
+}
+
+// The values of the header `lower_name` in a raw head, surrounding spaces and tabs removed.
+std::vector<std::string_view> header_values(std::string_view head, std::string_view lower_name) {
+  std::vector<std::string_view> values;
+  std::size_t line_start = head.find('\n');  // after the request line
+  while (line_start != std::string_view::npos && line_start + 1 < head.size()) {
+    const std::size_t begin = line_start + 1;
+    std::size_t end = head.find('\n', begin);
+    std::string_view line = head.substr(begin, end == std::string_view::npos ? std::string_view::npos : end - begin);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (line.empty()) break;  // the blank line ending the head
+    const std::size_t colon = line.find(':');
+    if (colon != std::string_view::npos && equals_ignoring_case(line.substr(0, colon), lower_name)) {
+      std::string_view value = line.substr(colon + 1);
+      while (!value.empty() && is_space_or_tab(value.front())) value.remove_prefix(1);
+      while (!value.empty() && is_space_or_tab(value.back())) value.remove_suffix(1);
+      values.push_back(value);
+    }
+    line_start = end;
+  }
+  return values;
 }
 
 }  // namespace
@@ -57,13 +92,12 @@ std::optional<HttpRefusal> content_length_refusal(const httplib::Request& reques
   return std::nullopt;
 }
 
-bool bearer_key_matches(const httplib::Request& request, const std::string& key) {
-  // The multimap's value, not get_header_value(), whose C string would end at a NUL byte.
-  if (request.headers.count("Authorization") != 1) return false;
-  const std::string& value = request.headers.find("Authorization")->second;
+bool bearer_key_matches(std::string_view request_head, const std::string& key) {
+  std::vector<std::string_view> values = header_values(request_head, "authorization");
+  if (values.size() != 1) return false;
   const std::string expected = "Bearer " + key;
-  if (value.size() != expected.size()) return false;
-  return CRYPTO_memcmp(value.data(), expected.data(), expected.size()) == 0;
+  if (values.front().size() != expected.size()) return false;
+  return CRYPTO_memcmp(values.front().data(), expected.data(), expected.size()) == 0;
 }
 
 }  // namespace a3::agent::http

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "agent/http/http_limits.hpp"
 
@@ -16,8 +17,10 @@ namespace a3::agent::http {
 // that differ), 413 above `max_body_bytes`. Other methods: 400 only for a malformed length.
 std::optional<HttpRefusal> content_length_refusal(const httplib::Request& request, std::size_t max_body_bytes);
 
-// True when the request has exactly one Authorization header whose whole value, every byte
-// (NUL included), is "Bearer " + key. Compared in constant time for a given length.
-bool bearer_key_matches(const httplib::Request& request, const std::string& key);
+// True when `request_head` (a request's head exactly as received: GuardedServer::
+// current_request_head(), not httplib's parsed headers, which are percent-decoded and cut at NUL)
+// has exactly one Authorization header whose whole value, every byte, is "Bearer " + key
+// (surrounding spaces and tabs aside, as HTTP allows). Compared in constant time for a given length.
+bool bearer_key_matches(std::string_view request_head, const std::string& key);
 
 }  // namespace a3::agent::http

@@ -156,8 +156,8 @@ void ModelServer::log(const std::string& line) {
   log_(line);
 }
 
-bool ModelServer::authorized(const httplib::Request& req) const {
-  return required_key_.empty() || http::bearer_key_matches(req, required_key_);
+bool ModelServer::authorized() const {
+  return required_key_.empty() || http::bearer_key_matches(http::GuardedServer::current_request_head(), required_key_);
 }
 
 bool ModelServer::wait_or_stop(double seconds) {
@@ -179,7 +179,7 @@ void ModelServer::start() {
   // own 8 KiB limit answered 413 to form bodies).
   http_->Post("/v1/chat/completions", [this](const httplib::Request& req, httplib::Response& res,
                                              const httplib::ContentReader& reader) { handle_chat(req, res, reader); });
-  http_->Get("/v1/models", [this](const httplib::Request& req, httplib::Response& res) { handle_models(req, res); });
+  http_->Get("/v1/models", [this](const httplib::Request&, httplib::Response& res) { handle_models(res); });
   http_->Get(R"(/v1/models/(.+))", [this](const httplib::Request& req, httplib::Response& res) { handle_model(req, res); });
   http_->set_error_handler(httplib::Server::HandlerWithResponse([this](const httplib::Request& req,
                                                                         httplib::Response& res) {
@@ -259,8 +259,8 @@ void ModelServer::send_unrouted(const httplib::Request& req, httplib::Response& 
   send_error(res, {res.status, message, std::nullopt, std::nullopt}, 0.0, route, &ModelServerStats::bad_requests);
 }
 
-void ModelServer::handle_models(const httplib::Request& req, httplib::Response& res) {
-  if (!authorized(req)) {
+void ModelServer::handle_models(httplib::Response& res) {
+  if (!authorized()) {
     send_error(res, {401, "missing or wrong API key: send Authorization: Bearer <key>", std::nullopt, std::nullopt}, 0.0,
                "GET /v1/models", &ModelServerStats::unauthorized);
     return;
@@ -279,7 +279,7 @@ void ModelServer::handle_models(const httplib::Request& req, httplib::Response& 
 void ModelServer::handle_model(const httplib::Request& req, httplib::Response& res) {
   const std::string id = req.matches[1];
   const std::string what = "GET /v1/models/" + id;
-  if (!authorized(req)) {
+  if (!authorized()) {
     send_error(res, {401, "missing or wrong API key: send Authorization: Bearer <key>", std::nullopt, std::nullopt}, 0.0, what,
                &ModelServerStats::unauthorized);
     return;
@@ -298,7 +298,7 @@ void ModelServer::handle_model(const httplib::Request& req, httplib::Response& r
 
 std::optional<ApiError> ModelServer::admit_chat(const httplib::Request& req, const httplib::ContentReader& reader,
                                                 json& request) {
-  if (!authorized(req)) return ApiError{401, "missing or wrong API key: send Authorization: Bearer <key>", std::nullopt, std::nullopt};
+  if (!authorized()) return ApiError{401, "missing or wrong API key: send Authorization: Bearer <key>", std::nullopt, std::nullopt};
   const std::string media = media_type(req.get_header_value("Content-Type"));
   if (auto e = form_body_error(media)) return e;
   std::string body;
@@ -375,7 +375,7 @@ void ModelServer::send_stream(httplib::Response& res, std::vector<json> chunks, 
 bool ModelServer::admitted(const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader,
                            int in_flight, json& request, uint64_t& index) {
   const std::string route = "POST /v1/chat/completions";
-  if (options_.max_concurrency > 0 && in_flight > options_.max_concurrency && authorized(req)) {
+  if (options_.max_concurrency > 0 && in_flight > options_.max_concurrency && authorized()) {
     res.set_header("Connection", "close");  // the body stays unread
     send_error(res, {429, "server busy: more than " + std::to_string(options_.max_concurrency) +
                               " requests at once (--max-concurrency)", std::nullopt, std::nullopt},

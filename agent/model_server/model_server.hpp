@@ -118,13 +118,14 @@ class ModelServer {
 
  private:
   void handle_chat(const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader);
-  void handle_models(const httplib::Request& req, httplib::Response& res);
+  void handle_models(httplib::Response& res);
   void handle_model(const httplib::Request& req, httplib::Response& res);
   // The OpenAI error for a request refused before its route (408, 411, 400, 413, 503).
   void send_refusal(const httplib::Request& req, httplib::Response& res, const http::HttpRefusal& refusal);
   // The OpenAI error for what httplib answered on its own (404 no route, 400 unreadable).
   void send_unrouted(const httplib::Request& req, httplib::Response& res);
-  bool authorized(const httplib::Request& req) const;
+  // The bearer key of the request being handled on this thread, checked on its exact bytes.
+  bool authorized() const;
   // The 401 / 413 / 415 / 400 that refuses the request, else nothing (`request` is filled).
   std::optional<ApiError> admit_chat(const httplib::Request& req, const httplib::ContentReader& reader,
                                      nlohmann::json& request);

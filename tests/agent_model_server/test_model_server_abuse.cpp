@@ -170,6 +170,8 @@ TEST(ModelServerAbuse, ABearerKeyFollowedByANulByteIsRefused) {
   EXPECT_EQ(with("Bearer " + key + std::string(1, '\0') + "junk"), 401);
   EXPECT_EQ(with("Bearer " + key + "junk"), 401);
   EXPECT_EQ(with("Bearer " + key.substr(0, key.size() - 1)), 401);
+  EXPECT_EQ(with("Bearer " + key.substr(0, key.size() - 1) + "%66"), 401);  // 'f' percent-encoded
+  EXPECT_EQ(with("Bearer  " + key), 401);
   EXPECT_EQ(with("Bearer " + key), 200);
   ::unsetenv("A3_TEST_ABUSE_KEY");
 }
