@@ -7,6 +7,30 @@
 
 #include "rigs/cli/command_registry.hpp"
 
+namespace {
+
+// "a3rig", "a3rig run", "a3rig node part": the (sub)command being parsed when an error came.
+std::string command_path(const CLI::App& app) {
+  std::string path = "a3rig";
+  for (const CLI::App* at = &app; at != nullptr;) {
+    const auto parsed = at->get_subcommands();
+    at = parsed.empty() ? nullptr : parsed.back();
+    if (at != nullptr) path += " " + at->get_name();
+  }
+  return path;
+}
+
+// A usage error: one line naming the command, the flag and what was wrong; exit status 2.
+// --help and --version (CLI11's "errors" with code 0) print what they print and return 0.
+int usage_error(const CLI::App& app, const CLI::ParseError& e) {
+  if (e.get_exit_code() == 0) return app.exit(e);
+  const std::string command = command_path(app);
+  std::cerr << command << ": " << e.what() << " (" << command << " --help lists the options)\n";
+  return 2;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{
       "a3rig — co-simulation rig that evaluates LLM agents flying UAV missions over "
@@ -27,7 +51,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return usage_error(app, e);
   } catch (const std::exception& e) {
     std::cerr << "a3rig: error: " << e.what() << "\n";
     return 2;

@@ -24,6 +24,7 @@
 #include "common/json_text.hpp"
 #include "common/realtime_executor.hpp"
 #include "rigs/cli/command_registry.hpp"
+#include "rigs/cli/flag_checks.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -202,7 +203,7 @@ A3_REGISTER_COMMAND("60-can", [](CLI::App& app) {
       "monitor", "Print every DroneCAN transfer on the bus, decoded (JSON fields), and rejected frames");
   mon->add_option("bus", monitor->bus, "the CAN bus")->required();
   mon->add_option("-n,--count", monitor->count, "stop after this many transfers");
-  mon->add_option("--seconds", monitor->seconds, "stop after this long")->check(CLI::PositiveNumber);
+  mon->add_option("--seconds", monitor->seconds, "stop after this long")->check(a3::rigs::positive());
   mon->add_flag("--raw", monitor->raw, "also print every frame (cansend syntax)");
   mon->add_flag("-q,--quiet", monitor->quiet_summary, "no summary on stderr at the end");
   mon->callback([monitor] { command_exit_status() = run_monitor(*monitor); });
@@ -217,9 +218,9 @@ A3_REGISTER_COMMAND("60-can", [](CLI::App& app) {
   snd->add_option("type", send->type, "message type (full name, or unique short name)");
   snd->add_option("fields", send->fields, "the message's fields as a JSON object (NaN: null)");
   snd->add_option("--frame", send->frames, "a raw frame, ID#DATA as for cansend (repeatable)");
-  snd->add_option("--node-id", send->node_id, "source node ID (default 127)")->check(CLI::Range(1, 127));
-  snd->add_option("--priority", send->priority, "0 (highest) .. 31 (default 16)")->check(CLI::Range(0, 31));
-  snd->add_option("--transfer-id", send->transfer_id, "0..31 (default 0)")->check(CLI::Range(0, 31));
+  snd->add_option("--node-id", send->node_id, "source node ID (default 127)")->check(a3::rigs::between(1, 127));
+  snd->add_option("--priority", send->priority, "0 (highest) .. 31 (default 16)")->check(a3::rigs::between(0, 31));
+  snd->add_option("--transfer-id", send->transfer_id, "0..31 (default 0)")->check(a3::rigs::between(0, 31));
   snd->callback([send] { command_exit_status() = run_send(*send); });
 
   CLI::App* types = can->add_subcommand("types", "List the DroneCAN message types the rig knows");

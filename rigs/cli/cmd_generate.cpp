@@ -15,6 +15,7 @@
 
 #include "agent/llm/llm_client.hpp"
 #include "rigs/cli/command_registry.hpp"
+#include "rigs/cli/flag_checks.hpp"
 #include "rigs/cli/signal_stop.hpp"
 #include "rigs/core/generate_run.hpp"
 #include "rigs/core/generate_scenarios.hpp"
@@ -204,17 +205,17 @@ A3_REGISTER_COMMAND("45-generate", [](CLI::App& app) {
                   "PROVIDER/MODEL output folder and a stub's _meta.model (default: the model id when it has a '/', "
                   "else the endpoint's provider ($A3_LLM_PROVIDER or from the URL) / the model id)");
   cmd->add_option("--domain", args->domain, "domain folder (default uav)");
-  cmd->add_option("-j,--jobs", args->jobs, "episodes generated at once (default 1)")->check(CLI::Range(1, 256));
+  cmd->add_option("-j,--jobs", args->jobs, "episodes generated at once (default 1)")->check(a3::rigs::between(1, 256));
   cmd->add_option("--max-tokens", args->max_tokens, "completion tokens per call (default 10000, as the paper)")
-      ->check(CLI::Range(1, 1000000));
+      ->check(a3::rigs::between(1, 1000000));
   cmd->add_option("--temperature", args->temperature, "sampling temperature (default 0, as the paper)")
-      ->check(CLI::Range(0.0, 2.0));
+      ->check(a3::rigs::between(0.0, 2.0));
   cmd->add_option("--timeout", args->timeout_s, "seconds one HTTP attempt may take (default 600)")
-      ->check(CLI::PositiveNumber);
+      ->check(a3::rigs::positive());
   cmd->add_option("--retries", args->retries,
                   "HTTP retries of one call on 429/5xx and network errors, with backoff (default 4); when they are "
                   "used up the run stops (exit 1) rather than write failure stubs for a broken endpoint")
-      ->check(CLI::Range(0, 100));
+      ->check(a3::rigs::between(0, 100));
   cmd->add_flag("--retry-failed", args->retry_failed, "generate again where a failure stub was written");
   cmd->add_flag("--llm-stream", args->stream, "stream the answers (stream: true, server-sent events)");
   cmd->add_flag("-q,--quiet", args->quiet, "no progress lines");

@@ -15,6 +15,7 @@
 #include "bridge/nodes/bridge_node.hpp"
 #include "common/runtime.hpp"
 #include "rigs/cli/command_registry.hpp"
+#include "rigs/cli/flag_checks.hpp"
 #include "rigs/cli/node_thread_loop.hpp"
 #include "rigs/cli/signal_stop.hpp"
 #include "rigs/fc_setup.hpp"
@@ -87,26 +88,26 @@ A3_REGISTER_COMMAND("51-node-bridge", [](CLI::App& app) {
   cmd->add_option("--home", args->home, "ENU origin LAT,LON,HEIGHT (default 47.397742,8.545594,488); "
                                         "give the fc the same one");
   cmd->add_option("--seed", args->seed, "seed of the sensor noise (default 1)");
-  cmd->add_option("--node-id", args->node_id, "DroneCAN node ID (default 20)")->check(CLI::Range(1, 127));
+  cmd->add_option("--node-id", args->node_id, "DroneCAN node ID (default 20)")->check(a3::rigs::between(1, 127));
   cmd->add_option("--fc-node-id", args->fc_node_id,
                   "the flight controller's node ID: the only node whose esc.RawCommand and a3.fc.Status the bridge "
                   "takes; others are refused, counted (rejected_source) and reported on A3_SAFETY (default 10)")
       ->check(CLI::Range(1, 127));
   cmd->add_option("--imu-rate-hz", args->rates.imu_hz, "IMU report rate; never above the state rate (default 200)")
-      ->check(CLI::Range(1.0, 10000.0));
-  cmd->add_option("--gnss-rate-hz", args->rates.gnss_hz, "GNSS rate (default 10)")->check(CLI::Range(0.1, 1000.0));
-  cmd->add_option("--baro-rate-hz", args->rates.baro_hz, "barometer rate (default 50)")->check(CLI::Range(0.1, 1000.0));
-  cmd->add_option("--mag-rate-hz", args->rates.mag_hz, "magnetometer rate (default 50)")->check(CLI::Range(0.1, 1000.0));
+      ->check(a3::rigs::between(1.0, 10000.0));
+  cmd->add_option("--gnss-rate-hz", args->rates.gnss_hz, "GNSS rate (default 10)")->check(a3::rigs::between(0.1, 1000.0));
+  cmd->add_option("--baro-rate-hz", args->rates.baro_hz, "barometer rate (default 50)")->check(a3::rigs::between(0.1, 1000.0));
+  cmd->add_option("--mag-rate-hz", args->rates.mag_hz, "magnetometer rate (default 50)")->check(a3::rigs::between(0.1, 1000.0));
   cmd->add_option("--battery-rate-hz", args->rates.battery_hz, "battery rate (default 5)")
-      ->check(CLI::Range(0.1, 1000.0));
+      ->check(a3::rigs::between(0.1, 1000.0));
   cmd->add_option("--lcm-url", args->lcm_url,
                   "LCM URL (default: $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0)");
   cmd->add_option("--rtf", args->rtf, "real-time factor: simulated seconds per wall second (default 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(a3::rigs::positive());
   cmd->add_option("--duration-s", args->duration_s, "stop after this much simulated time")
-      ->check(CLI::NonNegativeNumber);
+      ->check(a3::rigs::non_negative());
   cmd->add_option("--report-every-s", args->report_every_s, "status line period on stderr, wall seconds (default 5)")
-      ->check(CLI::PositiveNumber);
+      ->check(a3::rigs::positive());
   cmd->callback([args] {
     try {
       command_exit_status() = run_bridge(*args);

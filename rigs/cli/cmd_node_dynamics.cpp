@@ -16,6 +16,7 @@
 #include "dynamics/dynamics_node.hpp"
 #include "dynamics/scenario_setup.hpp"
 #include "rigs/cli/command_registry.hpp"
+#include "rigs/cli/flag_checks.hpp"
 #include "rigs/cli/signal_stop.hpp"
 
 namespace a3::rigs {
@@ -125,23 +126,23 @@ A3_REGISTER_COMMAND("50-node-dynamics", [](CLI::App& app) {
   cmd->add_flag("--on-ground", args->on_ground, "start on the ground below the scenario's pose");
   cmd->add_option("--integrator", args->integrator, "cvode (default) or ode")
       ->check(CLI::IsMember({"cvode", "ode"}));
-  cmd->add_option("--rate-hz", args->rate_hz, "state publish rate (default 100)")->check(CLI::Range(1.0, 10000.0));
+  cmd->add_option("--rate-hz", args->rate_hz, "state publish rate (default 100)")->check(a3::rigs::between(1.0, 10000.0));
   cmd->add_option("--rtf", args->rtf, "real-time factor: simulated seconds per wall second (default 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(a3::rigs::positive());
   cmd->add_option("--command-timeout-s", args->command_timeout_s,
                   "spin the motors down after this long without a command (default 0.5)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--wind-mps", args->wind_mps, "mean wind speed (overrides the scenario)")->check(CLI::NonNegativeNumber);
+      ->check(a3::rigs::positive());
+  cmd->add_option("--wind-mps", args->wind_mps, "mean wind speed (overrides the scenario)")->check(a3::rigs::non_negative());
   cmd->add_option("--wind-dir-deg", args->wind_dir_deg, "direction the wind blows from, degrees from north");
   cmd->add_flag("--no-turbulence", args->no_turbulence, "mean wind only");
   cmd->add_option("--seed", args->seed, "seed of the turbulence (default 1)");
   cmd->add_option("--lcm-url", args->lcm_url,
                   "LCM URL (default: $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0)");
-  cmd->add_option("--duration-s", args->duration_s, "stop after this much simulated time")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--duration-s", args->duration_s, "stop after this much simulated time")->check(a3::rigs::non_negative());
   cmd->add_option("--demo", args->demo, "also publish rotor commands: hover or climb (for a quick look)")
       ->check(CLI::IsMember({"hover", "climb"}));
   cmd->add_option("--report-every-s", args->report_every_s, "status line period on stderr (default 5)")
-      ->check(CLI::PositiveNumber);
+      ->check(a3::rigs::positive());
   cmd->callback([args] { command_exit_status() = run_dynamics(*args); });
 });
 

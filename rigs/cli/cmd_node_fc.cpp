@@ -20,6 +20,7 @@
 #include "dynamics/scenario_setup.hpp"
 #include "dynamics/vehicle_params.hpp"
 #include "rigs/cli/command_registry.hpp"
+#include "rigs/cli/flag_checks.hpp"
 #include "rigs/cli/node_thread_loop.hpp"
 #include "rigs/cli/signal_stop.hpp"
 #include "rigs/fc_setup.hpp"
@@ -130,22 +131,22 @@ A3_REGISTER_COMMAND("52-node-fc", [](CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--home", args->home, "ENU origin LAT,LON,HEIGHT (default 47.397742,8.545594,488); "
                                         "give the bridge the same one");
-  cmd->add_option("--node-id", args->node_id, "DroneCAN node ID (default 10)")->check(CLI::Range(1, 127));
+  cmd->add_option("--node-id", args->node_id, "DroneCAN node ID (default 10)")->check(a3::rigs::between(1, 127));
   cmd->add_option("--command-sources", args->command_sources,
                   "node IDs whose a3.fc.Command (and a3.sim.Clock) the fc obeys, comma-separated: the bridge's and, "
                   "where one is on the bus, a ground station's (default 20, the bridge). Commands from any other "
                   "node are refused, counted (commands_rejected_source) and reported in a3.fc.CommandRefused, at "
                   "most once a second. CAN has no authentication: see bridge/README.md")
       ->delimiter(',')
-      ->check(CLI::Range(1, 127));
+      ->check(a3::rigs::between(1, 127));
   cmd->add_flag("--no-step-on-command", args->no_step_on_command,
                 "do not run a control step at once when a command is accepted (wait for the next tick)");
   cmd->add_option("--rtf", args->rtf, "real-time factor: simulated seconds per wall second (default 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(a3::rigs::positive());
   cmd->add_option("--duration-s", args->duration_s, "stop after this much simulated time")
-      ->check(CLI::NonNegativeNumber);
+      ->check(a3::rigs::non_negative());
   cmd->add_option("--report-every-s", args->report_every_s, "status line period on stderr, wall seconds (default 5)")
-      ->check(CLI::PositiveNumber);
+      ->check(a3::rigs::positive());
   cmd->callback([args] {
     try {
       command_exit_status() = run_fc(*args);

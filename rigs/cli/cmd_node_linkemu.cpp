@@ -27,6 +27,7 @@
 #include "linkemu/realtime_priority.hpp"
 #include "linkemu/slice_profile.hpp"
 #include "rigs/cli/command_registry.hpp"
+#include "rigs/cli/flag_checks.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -219,30 +220,30 @@ A3_REGISTER_COMMAND("50-node-linkemu", [](CLI::App& app) {
       ->check(CLI::IsMember({"stationary", "normal", "degraded"}));
   cmd->add_option("--degraded-dwell-s", args->degraded_dwell_s,
                   "mean length of a degraded episode, s (keeps each slice's degraded share)")
-      ->check(CLI::PositiveNumber);
+      ->check(a3::rigs::positive());
   cmd->add_option("--degraded-share", args->degraded_share,
                   "share of time degraded on every slice, [0, 1) (a stress setting: time averages "
                   "then differ from SPEC §6)")
-      ->check(CLI::Range(0.0, 0.999));
+      ->check(a3::rigs::between(0.0, 0.999));
   cmd->add_option("--trace", args->trace,
                   "replay n_t from a trace: a JSON list of points, {\"trace\": [...]}, or an "
                   "α³-Bench episode (its turns' net vectors)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--trace-period-s", args->trace_period_s,
                   "spacing of trace points without t_s, e.g. episode turns (default 5)")
-      ->check(CLI::PositiveNumber);
+      ->check(a3::rigs::positive());
   cmd->add_flag("--trace-loop", args->trace_loop, "start the trace over at its end (default: hold the last point)");
   cmd->add_option("--net-rate-hz", args->net_rate_hz, "A3_NET publication rate (default 10; 0: on change only)")
-      ->check(CLI::Range(0.0, 10000.0));
+      ->check(a3::rigs::between(0.0, 10000.0));
   cmd->add_option("--handover-ms", args->handover_ms, "slice-switch handover delay, ms (default 100)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(a3::rigs::non_negative());
   cmd->add_flag("--reorder", args->reorder, "let jitter reorder messages (default: FIFO per direction)");
   cmd->add_option("--ge-burst", args->ge_burst,
                   "Gilbert-Elliott bursty loss: mean burst length in messages (enables it)")
-      ->check(CLI::Range(1.0, 1e9));
+      ->check(a3::rigs::between(1.0, 1e9));
   cmd->add_option("--ge-loss-in-bad", args->ge_loss_in_bad,
                   "Gilbert-Elliott: loss probability in the Bad state (default 0.5; enables it)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(a3::rigs::between(0.0, 1.0));
   cmd->add_option("--records", args->records, "write one JSON line per message to this file");
   cmd->add_flag("--no-record-channel", args->no_record_channel,
                 "do not publish link_record_t on A3_LINK_RECORD");
@@ -250,17 +251,17 @@ A3_REGISTER_COMMAND("50-node-linkemu", [](CLI::App& app) {
   cmd->add_option("--lcm-url", args->lcm_url,
                   "LCM URL (default: $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0)");
   cmd->add_option("--real-time-factor", args->real_time_factor, "simulated seconds per wall second (default 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(a3::rigs::positive());
   cmd->add_option("--clock-epoch-mono-ns", args->clock_epoch_mono_ns,
                   "CLOCK_MONOTONIC instant of simulated time 0, shared by every node of a run (default: now)");
   cmd->add_option("--duration-s", args->duration_s, "stop after this much simulated time (default: run until stopped)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(a3::rigs::non_negative());
   cmd->add_option("--stats-every-s", args->stats_every_s, "log the counters this often (default 10; 0: never)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(a3::rigs::non_negative());
   cmd->add_option("--rt-priority", args->rt_priority,
                   "run the node's threads SCHED_FIFO at this priority (1-99; needs root or "
                   "CAP_SYS_NICE): keeps deliveries on time when the CPUs are busy (default 0: off)")
-      ->check(CLI::Range(0, 99));
+      ->check(a3::rigs::between(0, 99));
   cmd->add_flag("--print-profiles", args->print_profiles, "print the slice profiles in use (JSON) and exit");
   cmd->add_flag("--fit-profiles", args->fit_profiles,
                 "refit the profiles' fitted fields to their SPEC §6 targets, print the JSON and exit");

@@ -16,6 +16,7 @@
 #include "common/clock.hpp"
 #include "common/runtime.hpp"
 #include "rigs/cli/command_registry.hpp"
+#include "rigs/cli/flag_checks.hpp"
 #include "rigs/cli/signal_stop.hpp"
 #include "rigs/core/node_configs.hpp"
 #include "rigs/core/rig_nodes.hpp"
@@ -91,13 +92,13 @@ A3_REGISTER_COMMAND("90-node-part", [](CLI::App& app) {
   cmd->add_option("--scenario", o.scenario, "as for `a3rig run`")->required();
   cmd->add_option("--seed", o.seed, "as for `a3rig run` (default 42)");
   cmd->add_option("--slice", o.slice, "as for `a3rig run`");
-  cmd->add_option("--rtf", o.real_time_factor, "simulated seconds per wall second (default 1)")->check(CLI::PositiveNumber);
+  cmd->add_option("--rtf", o.real_time_factor, "simulated seconds per wall second (default 1)")->check(a3::rigs::positive());
   cmd->add_option("--lcm-url", o.lcm_url, "LCM URL shared by every part of the run")->required();
   cmd->add_option("--sync", o.sync, "lockstep (default) or free, as for `a3rig run`")
       ->transform(CLI::CheckedTransformer(std::map<std::string, Sync>{{"lockstep", Sync::kLockstep}, {"free", Sync::kFree}}));
   cmd->add_option("--can", o.can, "CAN bus between bridge and fc: userspace:NAME, vcan0, can0, ...");
   cmd->add_option("--integrator", o.integrator, "cvode (default) or ode")->check(CLI::IsMember({"cvode", "ode"}));
-  cmd->add_option("--dynamics-rate-hz", o.dynamics_rate_hz, "dynamics step rate (default 250)")->check(CLI::PositiveNumber);
+  cmd->add_option("--dynamics-rate-hz", o.dynamics_rate_hz, "dynamics step rate (default 250)")->check(a3::rigs::positive());
   o.shared_dir = default_shared_dir();
   cmd->add_option("--shared-dir", o.shared_dir,
                   "the ../shared folder (alphabench scenarios, traces; default $A3_SHARED_DIR, else ../shared here "

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "rigs/cli/command_registry.hpp"
+#include "rigs/cli/flag_checks.hpp"
 #include "rigs/cli/scenario_run_flags.hpp"
 #include "rigs/cli/signal_stop.hpp"
 #include "rigs/core/node_configs.hpp"
@@ -96,11 +97,11 @@ A3_REGISTER_COMMAND("10-run", [](CLI::App& app) {
   cmd->add_option("--llm-model", o.llm_model,
                   "--agent llm: the model, e.g. gpt-4.1-mini, anthropic/claude-haiku-4.5 (default $A3_LLM_MODEL)");
   cmd->add_option("--llm-max-tokens", o.llm_max_tokens, "--agent llm: completion tokens per call (default 2048)")
-      ->check(CLI::Range(1, 1000000));
+      ->check(a3::rigs::between(1, 1000000));
   cmd->add_option("--llm-timeout", o.llm_timeout_s,
                   "--agent llm: seconds one HTTP attempt may take (default 180); in real time the world flies on "
                   "meanwhile")
-      ->check(CLI::PositiveNumber);
+      ->check(a3::rigs::positive());
   cmd->add_option("--llm-tools", o.llm_tools,
                   "--agent llm: native (default: every MCP tool and A2A task is an OpenAI function, the model's "
                   "tool_calls are the turn's actions and its report_turn call the turn's intent and text; without "
@@ -110,7 +111,7 @@ A3_REGISTER_COMMAND("10-run", [](CLI::App& app) {
   cmd->add_option("--llm-retries", o.llm_retries,
                   "--agent llm: HTTP retries of one call on 429/5xx and network errors, with backoff (default 4); "
                   "each of a turn's up to 3 attempts makes them")
-      ->check(CLI::Range(0, 100));
+      ->check(a3::rigs::between(0, 100));
   cmd->add_flag("--llm-stream", o.llm_stream,
                 "--agent llm: stream the answers (stream: true, server-sent events); each attempt's time to the first "
                 "and to the last token goes into the turn's _rig.attempt_log (ttft_s, ttlt_s)");

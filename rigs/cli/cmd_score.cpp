@@ -18,6 +18,7 @@
 #include "eval/leaderboard_plots.hpp"
 #include "eval/per_episode_writer.hpp"
 #include "rigs/cli/command_registry.hpp"
+#include "rigs/cli/flag_checks.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -142,7 +143,7 @@ A3_REGISTER_COMMAND("30-score", [](CLI::App& app) {
       ->check(CLI::ExistingPath);
   cmd->add_option("--budget", args->budget,
                   "episode budget B per model (default: scenarios found x episodes per scenario)")
-      ->check(CLI::PositiveNumber);
+      ->check(a3::rigs::positive());
   cmd->add_option("--profile", args->profile,
                   "release (default: reproduces the public leaderboard) or paper (the paper's "
                   "budgets, median T_opt)")
@@ -160,7 +161,7 @@ A3_REGISTER_COMMAND("30-score", [](CLI::App& app) {
   cmd->add_option("--threads", args->threads, "worker threads (default: one per CPU)");
   cmd->add_option("--max-file-mb", args->max_file_mb,
                   "files larger than this are invalid (default 16)")
-      ->check(CLI::PositiveNumber);
+      ->check(a3::rigs::positive());
   cmd->add_flag("-q,--quiet", args->quiet, "no progress or summary on stderr");
   cmd->callback([args] { command_exit_status() = run_score(*args); });
 });

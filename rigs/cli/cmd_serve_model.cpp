@@ -20,6 +20,7 @@
 #include "agent/model_server/scripted_responder.hpp"
 #include "rigs/cli/command_registry.hpp"
 #include "rigs/cli/http_limit_flags.hpp"
+#include "rigs/cli/flag_checks.hpp"
 #include "rigs/cli/signal_stop.hpp"
 
 namespace a3::rigs {
@@ -198,7 +199,7 @@ A3_REGISTER_COMMAND("50-serve-model", [](CLI::App& app) {
   cmd->add_option("--responder", args->responder, responder_help)->required()->check(CLI::IsMember(name_list));
   cmd->add_option("--host", o.host, "address to listen on (default 127.0.0.1; 0.0.0.0: every interface)");
   cmd->add_option("--port", o.port, "port (default 8088; 0: any free port, printed and written to --ready-file)")
-      ->check(CLI::Range(0, 65535));
+      ->check(a3::rigs::between(0, 65535));
   cmd->add_option("--latency", o.latency,
                   "wait before answering (default recorded): recorded (the responder's recorded latency, 0 when it "
                   "has none); a distribution per request: S, fixed:S, uniform:A,B, normal:MEAN,SD, "
@@ -206,20 +207,20 @@ A3_REGISTER_COMMAND("50-serve-model", [](CLI::App& app) {
                   "model-episode:NAME (per whole episode); tokens:PREFILL,DECODE[,TTFT] (TTFT + prompt tokens / "
                   "PREFILL + completion tokens / DECODE, tokens per second)");
   cmd->add_option("--time-scale", o.time_scale, "multiplies every latency (default 1; 0.1: ten times faster)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(a3::rigs::non_negative());
   cmd->add_option("--seed", o.seed, "seed of the latency and fail-rate draws (default 42)");
   cmd->add_option("--fail-rate", o.fail_rate, "probability that a chat request fails on purpose (default 0)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(a3::rigs::between(0.0, 1.0));
   cmd->add_option("--fail-first", o.fail_first, "the first N chat requests fail on purpose (default 0)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(a3::rigs::non_negative());
   cmd->add_option("--fail-status", o.fail_status, "HTTP status of those failures: 429 (default), 500, 502, 503, 504")
       ->check(CLI::IsMember({429, 500, 502, 503, 504}));
   cmd->add_option("--retry-after", o.retry_after_s,
                   "Retry-After seconds sent with failures and busy refusals (default 1; 0: no header)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(a3::rigs::non_negative());
   cmd->add_option("--max-concurrency", o.max_concurrency,
                   "chat requests answered at once; more get 429 with Retry-After (default 0: no limit)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(a3::rigs::non_negative());
   cmd->add_option("--require-key-env", o.require_key_env,
                   "require Authorization: Bearer <the value of this environment variable> (401 otherwise); the "
                   "key itself is never given on the command line nor logged");

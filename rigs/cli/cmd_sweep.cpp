@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "rigs/cli/command_registry.hpp"
+#include "rigs/cli/flag_checks.hpp"
 #include "rigs/cli/signal_stop.hpp"
 #include "rigs/core/builtin_scenarios.hpp"
 #include "rigs/core/scenario.hpp"
@@ -182,22 +183,22 @@ A3_REGISTER_COMMAND("15-sweep", [](CLI::App& app) {
   cmd->add_option("--slices", args->slices, "comma list of starting slices: eMBB, URLLC, mMTC (default all three)");
   cmd->add_option("--seeds", args->seeds, "comma list of seeds and ranges, e.g. 1,2,3 or 1-5 (default 1-5)");
   cmd->add_option("-j,--jobs", args->jobs, "episodes run at once (default: the number of cores)")
-      ->check(CLI::Range(1, 1024));
+      ->check(a3::rigs::between(1, 1024));
   cmd->add_option("--runtime", args->runtime, "virtual (default: as fast as possible) or real (the wall clock)")
       ->check(CLI::IsMember({"real", "virtual"}));
   cmd->add_option("--rtf", args->real_time_factor, "real time: simulated seconds per wall second (default 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(a3::rigs::positive());
   cmd->add_option("--shard", args->shard, "I/N: run only the cells whose grid index % N == I (default 0/1: all)");
-  cmd->add_option("--out", args->out, "output folder (default out/sweep)");
+  cmd->add_option("--out", args->out, "output folder, created when absent (default out/sweep)")->check(a3::rigs::output_folder());
   cmd->add_option("--cell-timeout", args->cell_timeout_s,
                   "wall seconds one episode may take before it is killed and recorded as failed; 0: no limit "
                   "(default 900 in virtual time, none in real time)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(a3::rigs::non_negative());
   cmd->add_flag("--rerun", args->rerun, "run every cell again, complete or not");
   cmd->add_option("--realtime-retries", args->realtime_retries,
                   "real time: runs again a cell whose run broke the real-time contract (status realtime_violated: the "
                   "host could not keep the pace) up to this many times, then lists it as failed (default 2)")
-      ->check(CLI::Range(0, 100));
+      ->check(a3::rigs::between(0, 100));
   cmd->add_flag("--dry-run", args->dry_run, "list the cells of this shard (done or to run) and their commands");
   cmd->add_option("--plot-only", args->plot_only,
                   "DIR: run nothing; merge DIR's results.csv and results.shard-*.csv into DIR/results.csv and write "

@@ -12,6 +12,7 @@
 #include "eval/corpus_scorer.hpp"
 #include "eval/episode_schema.hpp"
 #include "rigs/cli/command_registry.hpp"
+#include "rigs/cli/flag_checks.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -93,7 +94,7 @@ A3_REGISTER_COMMAND("20-validate", [](CLI::App& app) {
   cmd->add_option("--threads", args->threads, "worker threads (default: one per CPU)");
   cmd->add_option("--max-file-mb", args->max_file_mb,
                   "files larger than this are invalid (default 16)")
-      ->check(CLI::PositiveNumber);
+      ->check(a3::rigs::positive());
   cmd->callback([args] { command_exit_status() = run_validate(*args); });
 });
 

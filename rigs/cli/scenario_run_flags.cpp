@@ -4,6 +4,8 @@
 #include <map>
 #include <stdexcept>
 
+#include "rigs/cli/flag_checks.hpp"
+
 namespace a3::rigs {
 
 void ScenarioRunFlags::apply() {
@@ -29,9 +31,9 @@ void add_scenario_run_flags(CLI::App& cmd, ScenarioRunFlags& f) {
   cmd.add_option("--slice", o.slice, "start on this 6G slice instead of the scenario's (eMBB, URLLC or mMTC)")
       ->check(CLI::IsMember({"eMBB", "URLLC", "mMTC"}));
   cmd.add_option("--seed", o.seed, "seed of every random stream (default 42)");
-  cmd.add_option("--out", f.out, "output folder (default out/run)");
+  cmd.add_option("--out", f.out, "output folder, created when absent (default out/run)")->check(output_folder());
   cmd.add_option("--rtf", o.real_time_factor, "real time: simulated seconds per wall second (default 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(a3::rigs::positive());
   cmd.add_option("--sync", o.sync,
                  "real time: lockstep (default: dynamics, bridge and flight controller advance together, paced by "
                  "the wall clock at --rtf) or free (every node on the wall clock; for a real flight controller)")
@@ -43,8 +45,8 @@ void add_scenario_run_flags(CLI::App& cmd, ScenarioRunFlags& f) {
                  "real time: the CAN bus between bridge and flight controller: userspace (a private bus, default), "
                  "or an interface such as vcan0 or can0 (SocketCAN)");
   cmd.add_option("--integrator", o.integrator, "cvode (default) or ode")->check(CLI::IsMember({"cvode", "ode"}));
-  cmd.add_option("--max-turns", o.max_turns, "turn budget (default 12)")->check(CLI::Range(2, 100));
-  cmd.add_option("--min-turns", o.min_turns, "fewest turns before the dialogue may end (default 8)")->check(CLI::Range(2, 100));
+  cmd.add_option("--max-turns", o.max_turns, "turn budget (default 12)")->check(a3::rigs::between(2, 100));
+  cmd.add_option("--min-turns", o.min_turns, "fewest turns before the dialogue may end (default 8)")->check(a3::rigs::between(2, 100));
   cmd.add_flag("--no-lcm-log", [&o](int64_t) { o.write_lcm_log = false; }, "do not write the LCM log");
   cmd.add_flag("--no-plot", [&o](int64_t) { o.write_plot = false; }, "do not draw the trajectory");
   cmd.add_flag("-q,--quiet", o.quiet, "no progress lines");
