@@ -64,26 +64,28 @@ void JsonShapeChecker::check_keys(const rapidjson::Value& object, Violations& ou
     out.push_back({current_path(), "json-duplicate-key",
                    "duplicate key \"" + std::string(key) + "\" (readers disagree on which value counts)"});
   };
-  const auto first = object.MemberBegin();
-  if (n <= kPairwiseMembers) {
-    for (rapidjson::SizeType i = 1; i < n; ++i) {
-      const std::string_view key = name_of(first[i]);
-      for (rapidjson::SizeType j = 0; j < i; ++j) {
-        if (name_of(first[j]) != key) continue;
-        // Report each key once: at its second occurrence.
-        bool earlier = false;
-        for (rapidjson::SizeType k = 0; k < j && !earlier; ++k) earlier = name_of(first[k]) == key;
-        if (!earlier) report(key);
-        break;
-      }
+  keys_.clear();
+  for (auto m = object.MemberBegin(); m != object.MemberEnd(); ++m) keys_.push_back(name_of(*m));
+  if (n > kPairwiseMembers) {
+    std::sort(keys_.begin(), keys_.end());
+    for (std::size_t i = 1; i < keys_.size(); ++i) {
+      if (keys_[i] == keys_[i - 1] && (i < 2 || keys_[i - 2] != keys_[i])) report(keys_[i]);
     }
     return;
   }
-  keys_.clear();
-  for (auto m = first; m != object.MemberEnd(); ++m) keys_.push_back(name_of(*m));
-  std::sort(keys_.begin(), keys_.end());
+  // Length and first byte settle almost every pair without comparing the keys' bytes.
+  const auto same = [](std::string_view a, std::string_view b) {
+    return a.size() == b.size() && (a.empty() || (a[0] == b[0] && a == b));
+  };
   for (std::size_t i = 1; i < keys_.size(); ++i) {
-    if (keys_[i] == keys_[i - 1] && (i < 2 || keys_[i - 2] != keys_[i])) report(keys_[i]);
+    for (std::size_t j = 0; j < i; ++j) {
+      if (!same(keys_[i], keys_[j])) continue;
+      // Report each key once: at its second occurrence.
+      bool earlier = false;
+      for (std::size_t k = 0; k < j && !earlier; ++k) earlier = same(keys_[k], keys_[i]);
+      if (!earlier) report(keys_[i]);
+      break;
+    }
   }
 }
 
