@@ -152,7 +152,8 @@ A3_REGISTER_COMMAND("12-mcp", [](CLI::App& app) {
   cmd->add_option("--http", args->http,
                   "serve Streamable HTTP on HOST:PORT (e.g. 127.0.0.1:8765; endpoint /mcp) instead of stdio; a POST "
                   "without Content-Length is a 411, a malformed one a 400, one over 8 MiB a 413, a request whose head "
-                  "or body comes too late a 408, a connection beyond --max-connections a 503 (JSON-RPC errors)");
+                  "or body comes too late a 408, a connection beyond --max-connections a 503 (JSON-RPC errors; "
+                  "--max-connections, --header-timeout and --body-timeout apply with --http only)");
   args->http_limit_flags = add_http_limit_flags(*cmd, args->http_limits);
   cmd->callback([args] { command_exit_status() = serve(*args); });
 });

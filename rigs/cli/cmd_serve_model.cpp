@@ -227,7 +227,7 @@ A3_REGISTER_COMMAND("50-serve-model", [](CLI::App& app) {
   cmd->add_option("--model-id", o.model_ids,
                   "model ids GET /v1/models lists and GET /v1/models/{id} knows (repeatable; default the responder's "
                   "name)");
-  add_http_limit_flags(*cmd, o.http_limits);
+  add_http_limit_flags(*cmd, o.http_limits, "--max-connections,--threads");  // --threads: its name before 2026-11
   cmd->add_option("--ready-file", args->ready_file,
                   "once listening, write the port to this file (removed on stop), for scripts to wait on");
   cmd->add_flag("-q,--quiet", o.quiet, "no line per request");

@@ -3,12 +3,13 @@
 
 namespace a3::rigs {
 
-std::vector<CLI::Option*> add_http_limit_flags(CLI::App& command, agent::http::HttpLimits& limits) {
+std::vector<CLI::Option*> add_http_limit_flags(CLI::App& command, agent::http::HttpLimits& limits,
+                                               const std::string& connection_flag) {
   std::vector<CLI::Option*> added;
   added.push_back(command
-      .add_option("--max-connections,--threads", limits.max_connections,
+      .add_option(connection_flag, limits.max_connections,
                   "connections served at once, a thread each (default 256); beyond, a connection is answered 503 "
-                  "with Retry-After: 1 (--threads is the older name)")
+                  "with Retry-After: 1")
       ->check(CLI::Range(1, 4096)));
   added.push_back(command
       .add_option("--header-timeout", limits.header_timeout_s,

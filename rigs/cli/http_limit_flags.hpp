@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <string>
 #include <vector>
 
 #include "agent/http/http_limits.hpp"
@@ -11,6 +12,8 @@
 namespace a3::rigs {
 
 // Returns the options added (a command may refuse them when it serves no HTTP).
-std::vector<CLI::Option*> add_http_limit_flags(CLI::App& command, agent::http::HttpLimits& limits);
+// `connection_flag`: the names of the connection limit's flag (serve-model adds its older --threads).
+std::vector<CLI::Option*> add_http_limit_flags(CLI::App& command, agent::http::HttpLimits& limits,
+                                               const std::string& connection_flag = "--max-connections");
 
 }  // namespace a3::rigs
