@@ -87,7 +87,10 @@ Violations JsonSchemaValidator::violations(const rapidjson::Value& document) con
   const bool any_specific = std::any_of(errors.begin(), errors.end(),
                                         [&](const auto& e) { return !is_summary(e.second); });
   Violations out;
-  for (const auto& [pointer, description] : errors) {
+  for (const auto& error : errors) {
+    // Named copies, not structured bindings: clang 14 (the fuzz build) cannot capture those.
+    const std::string& pointer = error.first;
+    const std::string& description = error.second;
     if (any_specific ? is_summary(description) : has_deeper(pointer)) continue;
     const bool duplicate = std::any_of(out.begin(), out.end(), [&](const Violation& v) {
       return v.json_path == pointer && v.message == description;
