@@ -65,6 +65,17 @@ TEST_F(EpisodeJsonShapeTest, DeepArgsInAnEpisodeAreInvalidAtTheirPath) {
   EXPECT_EQ(c.violations[0].json_path.rfind("/dialogue/0/actions/0/args/k/k/", 0), 0u);
 }
 
+// Just within the limit, the whole check (valijson, rules, facts) runs on it: it descends only
+// as deep as the schema, so the args' depth does not matter to it.
+TEST_F(EpisodeJsonShapeTest, DeepArgsWithinTheLimitAreAValidEpisode) {
+  json e = a3::test::make_episode();
+  json deep = 1;
+  for (int i = 0; i < kMaxEpisodeDepth - 5; ++i) deep = json{{"k", deep}};  // args is the 5th level
+  e["dialogue"][0]["actions"][0]["args"] = deep;
+  const EpisodeCheck c = check(e.dump());
+  EXPECT_EQ(c.status, EpisodeStatus::kValid) << all(c);
+}
+
 TEST_F(EpisodeJsonShapeTest, NestingAtTheLimitIsNotADepthProblem) {
   JsonShapeChecker checker(3);
   rapidjson::Document d;
