@@ -13,6 +13,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/atomic_file.hpp"
+#include "common/png_output.hpp"
 #include "eval/leaderboard_format.hpp"
 
 extern char** environ;
@@ -39,9 +41,11 @@ std::string label_of(const std::string& model) {
 
 std::string script(const fs::path& dir) {
   const std::string data = quoted((dir / "leaderboard.tsv").string());
-  auto out = [&](const char* name) { return quoted((dir / name).string()); };
+  // Drawn into "<name><tmp_suffix>" when gnuplot is given tmp_suffix (write_leaderboard_plots).
+  auto out = [&](const char* name) { return quoted((dir / name).string()) + ".tmp_suffix"; };
   std::ostringstream gp;
   gp << "# a3rig leaderboard figures; data columns: see the header of leaderboard.tsv\n"
+     << "if (!exists('tmp_suffix')) tmp_suffix = ''\n"
      << "set terminal pngcairo size 1100,650 font ',11' noenhanced\n"
      << "set datafile separator '\\t'\n"
      << "set key off\nset grid ytics\nset style fill solid 0.8 border -1\n"
@@ -81,7 +85,21 @@ std::string script(const fs::path& dir) {
   return gp.str();
 }
 
-void run_gnuplot(const fs::path& script_path, const fs::path& log_path) {
+std::string leaderboard_tsv(const std::vector<ModelSummary>& rows) {
+  std::ostringstream data;
+  data << "# model\tdomain\tmean\tci95\talpha3_rel\talpha3_per_1k_tokens\talpha3_per_second"
+          "\tmean_gen_time_s\tmean_total_tokens\n";
+  for (const auto& r : rows) {
+    data << label_of(r.model) << "\t" << r.domain << "\t" << format_double(r.mean) << "\t"
+         << format_double(r.ci95) << "\t" << format_double(r.alpha3_rel) << "\t"
+         << format_double(r.alpha3_per_1k_tokens) << "\t" << format_double(r.alpha3_per_second)
+         << "\t" << format_double(r.mean_gen_time_s) << "\t"
+         << format_double(r.mean_total_tokens) << "\n";
+  }
+  return data.str();
+}
+
+void run_gnuplot(const fs::path& script_path, const fs::path& log_path, const std::string& tmp_suffix) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_path.c_str(),
@@ -89,7 +107,9 @@ void run_gnuplot(const fs::path& script_path, const fs::path& log_path) {
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   std::string program = "gnuplot";
   std::string script_arg = script_path.string();
-  char* argv[] = {program.data(), script_arg.data(), nullptr};
+  std::string option = "-e";
+  std::string suffix_arg = "tmp_suffix=" + quoted(tmp_suffix);
+  char* argv[] = {program.data(), option.data(), suffix_arg.data(), script_arg.data(), nullptr};
   pid_t pid = 0;
   const int spawn_error = ::posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv, environ);
   posix_spawn_file_actions_destroy(&actions);
@@ -123,30 +143,15 @@ void write_leaderboard_plots(const fs::path& dir, const std::vector<ModelSummary
   fs::create_directories(dir, ec);
   if (ec) throw std::runtime_error(dir.string() + ": cannot create: " + ec.message());
   const fs::path abs_dir = fs::absolute(dir);
-  {
-    std::ofstream data(abs_dir / "leaderboard.tsv");
-    data << "# model\tdomain\tmean\tci95\talpha3_rel\talpha3_per_1k_tokens\talpha3_per_second"
-            "\tmean_gen_time_s\tmean_total_tokens\n";
-    for (const auto& r : rows) {
-      data << label_of(r.model) << "\t" << r.domain << "\t" << format_double(r.mean) << "\t"
-           << format_double(r.ci95) << "\t" << format_double(r.alpha3_rel) << "\t"
-           << format_double(r.alpha3_per_1k_tokens) << "\t" << format_double(r.alpha3_per_second)
-           << "\t" << format_double(r.mean_gen_time_s) << "\t"
-           << format_double(r.mean_total_tokens) << "\n";
-    }
-    if (!data) throw std::runtime_error((abs_dir / "leaderboard.tsv").string() + ": write failed");
-  }
+  common::write_file_atomically(abs_dir / "leaderboard.tsv", leaderboard_tsv(rows));
   const fs::path script_path = abs_dir / "plots.gp";
-  {
-    std::ofstream gp(script_path);
-    gp << script(abs_dir);
-    if (!gp) throw std::runtime_error(script_path.string() + ": write failed");
-  }
-  run_gnuplot(script_path, abs_dir / "gnuplot.log");
-  for (const auto& name : leaderboard_plot_files()) {
-    if (fs::file_size(abs_dir / name, ec) == 0 || ec) {
-      throw std::runtime_error("gnuplot did not write " + (abs_dir / name).string());
-    }
+  common::write_file_atomically(script_path, script(abs_dir));
+  try {
+    run_gnuplot(script_path, abs_dir / "gnuplot.log", common::temporary_png_suffix());
+    for (const auto& name : leaderboard_plot_files()) common::commit_png(common::temporary_png_path(abs_dir / name), abs_dir / name);
+  } catch (...) {
+    for (const auto& name : leaderboard_plot_files()) ::unlink(common::temporary_png_path(abs_dir / name).c_str());
+    throw;
   }
 }
 

@@ -16,8 +16,10 @@ namespace a3::eval {
 // The PNG files written, in DIR.
 const std::vector<std::string>& leaderboard_plot_files();
 
-// Writes the data, the script and the PNGs into dir (created if needed). Throws
-// std::runtime_error when gnuplot is missing or fails (its message included).
+// Writes the data, the script and the PNGs into dir (created if needed), each whole or not at
+// all (a PNG is renamed into place only when gnuplot succeeded and it is complete). Throws
+// std::runtime_error when gnuplot is missing or fails (its message included), and
+// common::OutputError ("<file>: <reason>") when a file cannot be written (a full disk).
 void write_leaderboard_plots(const std::filesystem::path& dir,
                              const std::vector<ModelSummary>& rows);
 

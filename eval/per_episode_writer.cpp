@@ -100,31 +100,37 @@ std::string csv_value(const nlohmann::ordered_json& v) {
 
 }  // namespace
 
-PerEpisodeWriter::PerEpisodeWriter(const std::filesystem::path& path)
-    : path_(path), out_(path, std::ios::binary | std::ios::trunc) {
-  if (!out_) throw std::runtime_error(path.string() + ": cannot create the per-episode file");
+PerEpisodeWriter::PerEpisodeWriter(const std::filesystem::path& path) : out_(path) {
   json_lines_ = path.extension() == ".jsonl";
   if (!json_lines_) {
-    for (std::size_t c = 0; c < columns().size(); ++c) out_ << (c ? "," : "") << columns()[c];
-    out_ << "\n";
+    for (std::size_t c = 0; c < columns().size(); ++c) pending_ += (c ? "," : "") + columns()[c];
+    pending_ += "\n";
   }
+}
+
+void PerEpisodeWriter::flush_when_full() {
+  constexpr std::size_t kChunkBytes = 64 * 1024;
+  if (pending_.size() < kChunkBytes) return;
+  out_.write(pending_);
+  pending_.clear();
 }
 
 void PerEpisodeWriter::write(const ScoredEpisode& episode) {
   const auto j = row(episode);
   if (json_lines_) {
-    out_ << j.dump() << "\n";
-    return;
+    pending_ += common::dump_json_text(j) + "\n";
+  } else {
+    std::size_t c = 0;
+    for (const auto& name : columns()) pending_ += (c++ ? "," : "") + csv_value(j[name]);
+    pending_ += "\n";
   }
-  std::size_t c = 0;
-  for (const auto& name : columns()) out_ << (c++ ? "," : "") << csv_value(j[name]);
-  out_ << "\n";
+  flush_when_full();
 }
 
 void PerEpisodeWriter::close() {
-  out_.flush();
-  if (!out_) throw std::runtime_error(path_.string() + ": write failed (disk full?)");
-  out_.close();
+  out_.write(pending_);
+  pending_.clear();
+  out_.commit();
 }
 
 }  // namespace a3::eval

@@ -3,8 +3,9 @@
 #pragma once
 
 #include <filesystem>
-#include <fstream>
 #include <string>
+
+#include "common/atomic_file.hpp"
 
 #include "eval/corpus_scorer.hpp"
 
@@ -12,15 +13,19 @@ namespace a3::eval {
 
 class PerEpisodeWriter {
  public:
-  // Throws std::runtime_error when the file cannot be created.
+  // Creates missing folders; throws common::OutputError ("<file or folder>: <reason>") when it
+  // cannot. Nothing appears at `path` until close().
   explicit PerEpisodeWriter(const std::filesystem::path& path);
   void write(const ScoredEpisode& episode);
-  // Flushes and reports a write error (full disk) as std::runtime_error.
+  // Writes the rest and renames the file into place; a write error (full disk) throws
+  // common::OutputError naming the file.
   void close();
 
  private:
-  std::filesystem::path path_;
-  std::ofstream out_;
+  void flush_when_full();
+
+  common::AtomicFileWriter out_;
+  std::string pending_;  // rows not yet handed to out_
   bool json_lines_ = false;
 };
 

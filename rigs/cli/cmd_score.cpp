@@ -9,9 +9,11 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "common/atomic_file.hpp"
 #include "eval/corpus_scorer.hpp"
 #include "eval/episode_schema.hpp"
 #include "eval/leaderboard_format.hpp"
@@ -96,10 +98,9 @@ int run_score(const ScoreArgs& args) {
     eval::write_leaderboard(std::cout, result.models, format);
     std::cout.flush();
   } else {
-    std::ofstream out(args.output);
-    if (!out) throw std::runtime_error(args.output + ": cannot create");
-    eval::write_leaderboard(out, result.models, format);
-    if (!out.flush()) throw std::runtime_error(args.output + ": write failed");
+    std::ostringstream table;
+    eval::write_leaderboard(table, result.models, format);
+    common::write_file_atomically(args.output, table.str());
   }
   if (!args.plots.empty()) eval::write_leaderboard_plots(args.plots, result.models);
 

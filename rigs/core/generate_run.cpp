@@ -1,8 +1,6 @@
 // The plan, the resume check, the workers and the atomic writes of `a3rig generate`.
 #include "rigs/core/generate_run.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -15,6 +13,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "common/atomic_file.hpp"
 #include "common/json_text.hpp"
 #include "eval/episode_schema.hpp"
 #include "eval/json_schema_validator.hpp"
@@ -44,35 +43,15 @@ std::optional<int64_t> recorded_seed(const fs::path& path) {
   return seed.is_number_float() ? static_cast<int64_t>(seed.get<double>()) : seed.get<int64_t>();
 }
 
-// Writes `text` to a temporary file beside `path`, then renames it over `path`.
-void write_atomically(const fs::path& path, const std::string& text, int worker) {
-  const fs::path tmp = path.string() + "." + std::to_string(::getpid()) + "-" + std::to_string(worker) + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw std::runtime_error("cannot write " + tmp.string() + " (disk full or no permission?)");
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw std::runtime_error("cannot rename " + tmp.string() + " to " + path.string() + ": " + ec.message());
-  }
-}
-
-// Temporary files an interrupted run left behind (sc-XXXX-ep-YY.json.PID-N.tmp).
+// Temporary files an interrupted run left behind: sc-XXXX-ep-YY.json.tmp-PID (common/atomic_file),
+// or sc-XXXX-ep-YY.json.PID-N.tmp from earlier versions.
 void remove_stale_temporaries(const fs::path& dir) {
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(dir, ec)) {
     const std::string name = entry.path().filename().string();
-    if (name.rfind("sc-", 0) == 0 && name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0 &&
-        name.find(".json.") != std::string::npos) {
+    const bool old_style = name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0;
+    if (name.rfind("sc-", 0) == 0 && name.find(".json.") != std::string::npos &&
+        (old_style || name.find(".json.tmp-") != std::string::npos)) {
       std::error_code ignored;
       fs::remove(entry.path(), ignored);
     }
@@ -145,7 +124,7 @@ GenerateRunSummary run_generate(const GenerateRunOptions& options, const Generat
   std::atomic<bool> abort{false};
   std::mutex mutex;  // summary, progress
   std::size_t done = 0;
-  auto worker = [&](int worker_index) {
+  auto worker = [&] {
     GenerateChat chat;
     eval::EpisodeReader reader(validator, profile);
     while (!abort.load()) {
@@ -160,8 +139,7 @@ GenerateRunSummary run_generate(const GenerateRunOptions& options, const Generat
       try {
         if (!chat) chat = make_chat();
         const GeneratedEpisode episode = generate_episode(chat, reader, *task.scenario, task.seed, options.model_label);
-        write_atomically(task.path, episode.document.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace),
-                         worker_index);
+        common::write_file_atomically(task.path, common::dump_json_text(episode.document));
         std::lock_guard<std::mutex> lock(mutex);
         ++done;
         (episode.generation_failed ? summary.generated_stubs : summary.generated_valid) += 1;
@@ -191,8 +169,8 @@ GenerateRunSummary run_generate(const GenerateRunOptions& options, const Generat
   };
   const int threads = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(options.jobs), tasks.size()));
   std::vector<std::thread> pool;
-  for (int i = 1; i < threads; ++i) pool.emplace_back(worker, i);
-  if (threads >= 1) worker(0);
+  for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
+  if (threads >= 1) worker();
   for (auto& t : pool) t.join();
   summary.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   summary.not_generated = tasks.size() - summary.generated_valid - summary.generated_stubs;

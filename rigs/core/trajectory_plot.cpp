@@ -114,6 +114,8 @@ std::string write_trajectory_plot(const fs::path& dir, const Scenario& s, const 
     return "gnuplot failed with status " + std::to_string(exit_status) + " (see " + log.string() + ")";
   }
   common::commit_png(temporary, png);
+  std::error_code ec;
+  if (fs::file_size(log, ec) == 0 && !ec) fs::remove(log, ec);  // gnuplot had nothing to say
   return "";
 }
 

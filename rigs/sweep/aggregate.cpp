@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 #include <tuple>
+
+#include "common/atomic_file.hpp"
 
 namespace a3::rigs::sweep {
 namespace {
@@ -78,26 +80,20 @@ std::vector<AggregateRow> aggregate(const std::vector<ResultRow>& rows) {
 }
 
 void write_aggregate_csv(const std::filesystem::path& path, const std::vector<AggregateRow>& rows) {
-  if (!path.parent_path().empty()) std::filesystem::create_directories(path.parent_path());
-  const std::filesystem::path temporary = path.string() + ".tmp";
-  {
-    std::ofstream out(temporary);
-    if (!out) throw std::runtime_error(temporary.string() + ": cannot open for writing");
-    // The interval columns are empty where the interval is undefined (t: n < 2; Wilson: n = 0).
-    out << "scenario,agent,think_time,think_time_mean_s,slice,n,n_missing,alpha3_mean,alpha3_ci95_lo,"
-           "alpha3_ci95_hi,SP_mean,SP_ci95_lo,SP_ci95_hi,successes,success_rate,success_ci95_lo,success_ci95_hi,"
-           "mission_time_mean_s\n";
-    for (const auto& a : rows) {
-      out << csv_field(a.scenario) << "," << csv_field(a.agent) << "," << csv_field(a.think_time) << ","
-          << number(a.think_time_mean_s) << "," << csv_field(a.slice) << "," << a.n << "," << a.n_missing << ","
-          << (a.n ? number(a.alpha3_mean) : "") << "," << interval_fields(a.alpha3_ci) << ","
-          << (a.n ? number(a.sp_mean) : "") << "," << interval_fields(a.sp_ci) << "," << a.successes << ","
-          << (a.n ? number(a.success_rate) : "") << "," << interval_fields(a.success_ci) << ","
-          << (a.n ? number(a.mission_time_mean_s) : "") << "\n";
-    }
-    if (!out.flush()) throw std::runtime_error(temporary.string() + ": write failed");
+  std::ostringstream out;
+  // The interval columns are empty where the interval is undefined (t: n < 2; Wilson: n = 0).
+  out << "scenario,agent,think_time,think_time_mean_s,slice,n,n_missing,alpha3_mean,alpha3_ci95_lo,"
+         "alpha3_ci95_hi,SP_mean,SP_ci95_lo,SP_ci95_hi,successes,success_rate,success_ci95_lo,success_ci95_hi,"
+         "mission_time_mean_s\n";
+  for (const auto& a : rows) {
+    out << csv_field(a.scenario) << "," << csv_field(a.agent) << "," << csv_field(a.think_time) << ","
+        << number(a.think_time_mean_s) << "," << csv_field(a.slice) << "," << a.n << "," << a.n_missing << ","
+        << (a.n ? number(a.alpha3_mean) : "") << "," << interval_fields(a.alpha3_ci) << ","
+        << (a.n ? number(a.sp_mean) : "") << "," << interval_fields(a.sp_ci) << "," << a.successes << ","
+        << (a.n ? number(a.success_rate) : "") << "," << interval_fields(a.success_ci) << ","
+        << (a.n ? number(a.mission_time_mean_s) : "") << "\n";
   }
-  std::filesystem::rename(temporary, path);
+  common::write_file_atomically(path, out.str());
 }
 
 }  // namespace a3::rigs::sweep

@@ -35,6 +35,7 @@ struct AggregateRow {
 // Groups in the order the rows first name them.
 std::vector<AggregateRow> aggregate(const std::vector<ResultRow>& rows);
 
+// Writes the table whole or not at all (common/atomic_file.hpp); throws common::OutputError.
 void write_aggregate_csv(const std::filesystem::path& path, const std::vector<AggregateRow>& rows);
 
 }  // namespace a3::rigs::sweep

@@ -10,10 +10,11 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
+
+#include "common/atomic_file.hpp"
 
 extern char** environ;
 
@@ -52,14 +53,14 @@ std::vector<std::string> ChildProcessCellRunner::command(const SweepCell& cell, 
 
 CellRunOutcome ChildProcessCellRunner::run(const SweepCell& cell, const std::filesystem::path& dir,
                                            const std::atomic<bool>& stop) {
-  std::filesystem::create_directories(dir);
   const auto log_path = dir / "run.log";
   const std::vector<std::string> args = command(cell, dir);
-  {
-    std::ofstream log(log_path);
-    log << "$";
-    for (const auto& a : args) log << " " << a;
-    log << "\n";
+  std::string command_line = "$";
+  for (const auto& a : args) command_line += " " + a;
+  try {
+    common::write_file_atomically(log_path, command_line + "\n");  // the child appends its output
+  } catch (const common::OutputError& e) {
+    return {false, e.what()};
   }
   std::vector<char*> argv;
   for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));

@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "common/atomic_file.hpp"
+
 namespace a3::rigs::sweep {
 namespace {
 
@@ -138,18 +140,12 @@ std::vector<std::string> split_csv_line(const std::string& line) {
 }
 
 void write_results_csv(const std::filesystem::path& path, const std::vector<ResultRow>& rows) {
-  if (!path.parent_path().empty()) std::filesystem::create_directories(path.parent_path());
-  const std::filesystem::path temporary = path.string() + ".tmp";
-  {
-    std::ofstream out(temporary);
-    if (!out) throw std::runtime_error(temporary.string() + ": cannot open for writing");
-    const auto& columns = results_columns();
-    for (std::size_t i = 0; i < columns.size(); ++i) out << (i ? "," : "") << columns[i];
-    out << "\n";
-    for (const auto& r : rows) out << row_line(r) << "\n";
-    if (!out.flush()) throw std::runtime_error(temporary.string() + ": write failed");
-  }
-  std::filesystem::rename(temporary, path);
+  std::ostringstream out;
+  const auto& columns = results_columns();
+  for (std::size_t i = 0; i < columns.size(); ++i) out << (i ? "," : "") << columns[i];
+  out << "\n";
+  for (const auto& r : rows) out << row_line(r) << "\n";
+  common::write_file_atomically(path, out.str());
 }
 
 std::vector<ResultRow> read_results_csv(const std::filesystem::path& path) {

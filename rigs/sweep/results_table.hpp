@@ -33,7 +33,8 @@ struct ResultRow {
 // The header line's column names, in order.
 const std::vector<std::string>& results_columns();
 
-// Writes the table atomically (a temporary file renamed over `path`).
+// Writes the table whole or not at all (common/atomic_file.hpp), creating missing folders;
+// throws common::OutputError ("<file>: <reason>").
 void write_results_csv(const std::filesystem::path& path, const std::vector<ResultRow>& rows);
 // Throws std::runtime_error naming the file, line and column of anything malformed.
 std::vector<ResultRow> read_results_csv(const std::filesystem::path& path);
