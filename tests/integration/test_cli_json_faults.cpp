@@ -94,5 +94,16 @@ TEST(CliJsonFaults, AFileNameThatIsNotUtf8GivesValidJsonOutputs) {
   EXPECT_GE(lines, 1);
 }
 
+TEST(CliJsonFaults, AModelFolderNameThatIsNotUtf8GivesAValidJsonLeaderboard) {
+  const test::TempDir dir("cli-json-folder");
+  test::write_json(dir.path() / "acme\xff" / "agent" / "uav" / "sc-0000-ep-00.json", test::make_episode());
+  const auto r = run_command(a3rig() + " score -q --format json " + quote(dir.path().string()));
+  EXPECT_EQ(r.exit_status, 0) << r.output;
+  nlohmann::json board;
+  ASSERT_NO_THROW(board = nlohmann::json::parse(r.output)) << r.output;
+  ASSERT_EQ(board.size(), 1u);
+  EXPECT_NE(board[0].dump().find("acme\xef\xbf\xbd"), std::string::npos) << board.dump();
+}
+
 }  // namespace
 }  // namespace a3
