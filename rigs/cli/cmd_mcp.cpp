@@ -19,6 +19,7 @@
 #include "rigs/cli/scenario_run_flags.hpp"
 #include "rigs/cli/signal_stop.hpp"
 #include "rigs/core/mcp_run.hpp"
+#include "rigs/core/run_outputs.hpp"
 #include "rigs/core/run_summary.hpp"
 #include "rigs/core/shared_dir.hpp"
 
@@ -81,6 +82,7 @@ int serve(McpArgs& a) {
   RunOptions& o = a.flags.options;
   o.shared_dir = default_shared_dir();
   const Scenario scenario = load_scenario(o.scenario, o.shared_dir);
+  check_output_space(scenario, o);  // before any session: a client never flies a run that cannot be written
   std::atomic<bool> stop{false};
   auto agent = make_mcp_agent(scenario, o, &stop);
   agent::mcp::McpServerOptions server_options;

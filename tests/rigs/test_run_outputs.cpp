@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "rigs/core/rig_runner.hpp"
+#include "rigs/core/run_summary.hpp"
 #include "tests/rigs/rig_test_support.hpp"
 #include "tests/tiny_tmpfs.hpp"
 
@@ -104,6 +105,38 @@ TEST(RunOutputsFaults, ASmallFilesystemIsRefusedBeforeTakeOffUnlessSkipped) {
   ::setenv(kSkipSpaceCheckEnv, "1", 1);
   EXPECT_NO_THROW(check_output_space(s, o));
   ::unsetenv(kSkipSpaceCheckEnv);
+}
+
+// Ctrl-C before the first half second, on a disk with room for the episode but not the log:
+// the run keeps its status (interrupted, exit 3) and names the lost log beside it.
+TEST(RunOutputsFaults, AnInterruptedRunWhoseLogFailedSaysBoth) {
+  test::TinyTmpfs disk(24 * 1024);
+  if (!disk.skip_reason().empty()) GTEST_SKIP() << disk.skip_reason();
+  RunOptions o = test::virtual_run("parcel-delivery", "interrupted");
+  o.out_dir = disk.path() / "run";
+  o.write_lcm_log = true;
+  ::setenv(kSkipSpaceCheckEnv, "1", 1);
+  const std::atomic<bool> stop{true};
+  const RunResult r = run_episode(load_scenario(o.scenario, o.shared_dir), o, {}, &stop);
+  ::unsetenv(kSkipSpaceCheckEnv);
+  const std::string lost = (o.out_dir / "episode.lcmlog").string() + ": No space left on device";
+  EXPECT_EQ(r.status, "interrupted");
+  EXPECT_EQ(run_exit_status(r.status), 3);
+  EXPECT_EQ(r.outputs_lost, std::vector<std::string>{lost});
+  EXPECT_EQ(r.episode_path, o.out_dir / "episode.json");
+  EXPECT_EQ(r.episode["_rig"]["status"], "interrupted");
+  EXPECT_EQ(r.episode["_rig"]["outputs_lost"], nlohmann::json::array({lost}));
+  EXPECT_FALSE(r.episode["_rig"].contains("flight_status"));
+  EXPECT_FALSE(std::filesystem::exists(o.out_dir / "episode.lcmlog"));
+  char* text = nullptr;
+  std::size_t size = 0;
+  std::FILE* out = ::open_memstream(&text, &size);
+  print_run_summary(out, r, o);
+  std::fclose(out);
+  const std::string summary(text, size);
+  std::free(text);
+  EXPECT_NE(summary.find("lcm log: not written (" + lost + ")\n"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("status:  interrupted;"), std::string::npos) << summary;
 }
 
 }  // namespace
