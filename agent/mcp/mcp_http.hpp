@@ -23,7 +23,6 @@
 #include <thread>
 
 namespace httplib {
-class Server;
 struct Request;
 struct Response;
 }  // namespace httplib

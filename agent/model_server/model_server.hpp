@@ -40,7 +40,6 @@
 #include "agent/model_server/openai_error.hpp"
 
 namespace httplib {
-class Server;
 class ContentReader;
 struct Request;
 struct Response;
