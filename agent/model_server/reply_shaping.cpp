@@ -2,6 +2,7 @@
 #include "agent/model_server/reply_shaping.hpp"
 
 #include "agent/model_server/schema_instance.hpp"
+#include "common/json_text.hpp"
 
 namespace a3::agent::model_server {
 namespace {
@@ -17,7 +18,7 @@ bool allowed(const ToolCall& call, const ChatOptions& options) {
 
 std::string content_for_format(const std::string& content, const ResponseFormat& format) {
   if (format.type == "text") return content;
-  const json parsed = json::parse(content, nullptr, false);
+  const json parsed = common::try_parse_json_text(content).value_or(json(json::value_t::discarded));
   if (format.type == "json_object") {
     return parsed.is_object() ? content : json({{"text", content}}).dump();
   }
