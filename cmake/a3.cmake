@@ -31,7 +31,21 @@ function(a3_gtest name)
     set(_a3_serial RUN_SERIAL TRUE)
   endif()
   gtest_discover_tests(${name} DISCOVERY_MODE PRE_TEST DISCOVERY_TIMEOUT 60
-    PROPERTIES TIMEOUT ${A_TIMEOUT} LABELS "${A_LABELS}" ${_a3_serial})
+    PROPERTIES TIMEOUT ${A_TIMEOUT} ${_a3_serial})
+  a3_label_discovered_tests(${name} "${A_LABELS}")
+endfunction()
+
+# Labels for the tests gtest_discover_tests finds in program NAME. Its PROPERTIES keep only the
+# first element of a list (LABELS "x;faults" arrived as LABELS x), so every label is set by a
+# file CTest reads after the discovery, over the list the discovery leaves in NAME_TESTS.
+function(a3_label_discovered_tests name labels)
+  if(NOT labels)
+    return()
+  endif()
+  set(file "${CMAKE_CURRENT_BINARY_DIR}/${name}_labels.cmake")
+  file(WRITE "${file}"
+    "if(${name}_TESTS)\n  set_tests_properties(\${${name}_TESTS} PROPERTIES LABELS \"${labels}\")\nendif()\n")
+  set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES "${file}")
 endfunction()
 
 # a3_bench(NAME SOURCES ... DEPS ...): a Google Benchmark (or plain) benchmark program.
