@@ -149,7 +149,10 @@ std::string RigProcesses::check() {
 
 void RigProcesses::stop(double grace_s) {
   for (Child& c : children_) {
-    if (!c.exited && c.pid > 0) ::kill(c.pid, SIGTERM);
+    if (!c.exited && c.pid > 0) {
+      ::kill(c.pid, SIGTERM);
+      ::kill(c.pid, SIGCONT);  // a frozen (SIGSTOP) child takes its SIGTERM now, not after the grace time
+    }
   }
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(grace_s);
   for (Child& c : children_) {
