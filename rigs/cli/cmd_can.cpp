@@ -218,7 +218,10 @@ A3_REGISTER_COMMAND("60-can", [](CLI::App& app) {
   snd->add_option("type", send->type, "message type (full name, or unique short name)");
   snd->add_option("fields", send->fields, "the message's fields as a JSON object (NaN: null)");
   snd->add_option("--frame", send->frames, "a raw frame, ID#DATA as for cansend (repeatable)");
-  snd->add_option("--node-id", send->node_id, "source node ID (default 127)")->check(a3::rigs::between(1, 127));
+  snd->add_option("--node-id", send->node_id,
+                  "source node ID (default 127). The rig's fc obeys a3.fc.Command only from its command sources "
+                  "(by default the bridge, node 20) and refuses, counts and reports the rest")
+      ->check(a3::rigs::between(1, 127));
   snd->add_option("--priority", send->priority, "0 (highest) .. 31 (default 16)")->check(a3::rigs::between(0, 31));
   snd->add_option("--transfer-id", send->transfer_id, "0..31 (default 0)")->check(a3::rigs::between(0, 31));
   snd->callback([send] { command_exit_status() = run_send(*send); });
