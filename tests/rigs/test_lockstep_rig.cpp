@@ -86,16 +86,17 @@ std::vector<Cell> every_builtin_both_ways() {
 
 INSTANTIATE_TEST_SUITE_P(BuiltInScenarios, LockstepUnderLoad, ::testing::ValuesIn(every_builtin_both_ways()), cell_name);
 
-// Flies survey-field with --processes and freezes the flight controller's process (SIGSTOP) for
-// freeze_s of wall time once the vehicle is airborne; returns the episode and the exit status.
+// Flies survey-field with --processes at --rtf 4 (the flight, not the freeze, is what takes
+// time) and freezes the flight controller's process (SIGSTOP) for freeze_s of wall time once the
+// vehicle is airborne; returns the episode and the exit status.
 std::pair<json, int> run_with_frozen_fc(const std::string& sync, double freeze_s, const std::string& tag) {
   const a3::test::TempDir dir(tag);
   const fs::path out = dir.path() / "out";
-  RunningRig rig({a3::test::a3rig(), "run", "--processes", "--sync", sync, "--scenario", "survey-field", "--rtf", "2",
+  RunningRig rig({a3::test::a3rig(), "run", "--processes", "--sync", sync, "--scenario", "survey-field", "--rtf", "4",
                   "--no-plot", "--out", out.string()},
                  dir.path() / "output.txt");
   EXPECT_TRUE(rig.wait_for_output("turn  3", 120.0)) << rig.text();
-  std::this_thread::sleep_for(std::chrono::seconds(5));  // climbing
+  std::this_thread::sleep_for(std::chrono::seconds(3));  // climbing
   const pid_t fc = part_of_run(rig.pid, "fc");
   EXPECT_GT(fc, 0) << rig.text();
   ::kill(fc, SIGSTOP);
@@ -114,9 +115,10 @@ bool has_event(const json& e, const std::string& kind) {
   return false;
 }
 
+// 1.5 s: shorter than the 3 s of silence that name a frozen node (statistics come every second).
 TEST(LockstepFaults, AFrozenFlightControllerMakesTheLockstepVehicleWait) {
   A3_REQUIRE_MULTICAST();
-  const auto [e, status] = run_with_frozen_fc("lockstep", 2.0, "lockstep-frozen-fc");
+  const auto [e, status] = run_with_frozen_fc("lockstep", 1.5, "lockstep-frozen-fc");
   ASSERT_TRUE(e.is_object());
   EXPECT_EQ(status, 0);
   EXPECT_EQ(e["_rig"]["status"], "completed");
@@ -126,13 +128,13 @@ TEST(LockstepFaults, AFrozenFlightControllerMakesTheLockstepVehicleWait) {
   EXPECT_EQ(rt["stale_steps"].get<int>(), 0);
   EXPECT_FALSE(has_event(e, "command_timeout"));
   // The wait is recorded: simulated time stood still while the fc was frozen.
-  EXPECT_GT(rt["lockstep"]["wait_max_s"].get<double>(), 1.5) << rt.dump();
-  EXPECT_GT(rt["lockstep"]["wait_total_s"].get<double>(), 1.5) << rt.dump();
+  EXPECT_GT(rt["lockstep"]["wait_max_s"].get<double>(), 1.0) << rt.dump();
+  EXPECT_GT(rt["lockstep"]["wait_total_s"].get<double>(), 1.0) << rt.dump();
 }
 
 TEST(LockstepFaults, FreeRunningAFrozenFlightControllerTripsTheMotorFailsafe) {
   A3_REQUIRE_MULTICAST();
-  const auto [e, status] = run_with_frozen_fc("free", 2.0, "free-frozen-fc");
+  const auto [e, status] = run_with_frozen_fc("free", 1.5, "free-frozen-fc");
   ASSERT_TRUE(e.is_object());
   const json& rt = e["_rig"]["realtime"];
   EXPECT_EQ(rt["sync"], "free");
@@ -145,7 +147,7 @@ TEST(LockstepFaults, FreeRunningAFrozenFlightControllerTripsTheMotorFailsafe) {
 
 TEST(LockstepFaults, AFlightControllerThatStaysFrozenIsNamed) {
   A3_REQUIRE_MULTICAST();
-  const auto [e, status] = run_with_frozen_fc("lockstep", 9.0, "lockstep-stuck-fc");
+  const auto [e, status] = run_with_frozen_fc("lockstep", 5.0, "lockstep-stuck-fc");
   ASSERT_TRUE(e.is_object());
   EXPECT_EQ(status, 4);
   const std::string why = e["_rig"]["status"];
