@@ -114,7 +114,8 @@ AgentDecision LlmAgent::decide(const AgentContext& context) {
   bool done = false;
   int attempt = 0;
   bool interrupted = false;
-  while (!done && !interrupted && attempt < options_.max_attempts) {
+  bool break_ladder = false;
+  while (!done && !interrupted && !break_ladder && attempt < options_.max_attempts) {
     ++attempt;
     bool threw = false;
     const LlmCallResult result = call(request(context, attempt, attempt > 1 ? &failure : nullptr), threw);
@@ -132,6 +133,10 @@ AgentDecision LlmAgent::decide(const AgentContext& context) {
       entry["endpoint_failure"] = !threw && is_endpoint_failure(result);
       entry["problems"] = {error};
       failure = {"", {error}};
+      // No HTTP answer at all (refused, timed out, reset) after the client's own retries: a
+      // stricter prompt cannot help, and two more attempts would hold a silent endpoint for
+      // 2 x (1 + --llm-retries) x --llm-timeout more.
+      if (!threw && result.http_status == 0) break_ladder = true;
     } else if (Reading r = read(result, context.turn_number); r.problems.empty()) {
       entry["outcome"] = "ok";
       d.intent = scrub(r.intent);

@@ -252,13 +252,15 @@ TEST_F(Native, AFailureAtTheEndpointIsMarkedAndAnotherIsNot) {
   LlmCallResult refused = down;
   refused.http_status = 400;
   refused.error = "HTTP 400: bad request";
-  model.answers = {down, refused};
+  model.answers = {refused, down, refused};
   LlmAgent agent(model.function(), "", agent::ToolCatalog::builtin(), native());
   const agent::AgentDecision d = agent.decide(played.context(1, test::normal_net()));
-  ASSERT_EQ(d.attempt_log.size(), 3u);
+  // A refusal is corrected and retried; no HTTP answer at all ends the ladder there.
+  ASSERT_EQ(d.attempt_log.size(), 2u);
   EXPECT_EQ(d.attempt_log[0]["outcome"], "call_failed");
-  EXPECT_EQ(d.attempt_log[0]["endpoint_failure"], true);
-  EXPECT_EQ(d.attempt_log[1]["endpoint_failure"], false);
+  EXPECT_EQ(d.attempt_log[0]["endpoint_failure"], false);
+  EXPECT_EQ(d.attempt_log[1]["outcome"], "call_failed");
+  EXPECT_EQ(d.attempt_log[1]["endpoint_failure"], true);
 }
 
 TEST_F(Native, AStreamedCallsTokenTimesGoIntoTheAttemptLog) {
