@@ -17,9 +17,12 @@
 #include <thread>
 
 #include "tests/agent_llm/silent_endpoint.hpp"
+#include "tests/integration/run_command.hpp"
 
 namespace a3 {
 namespace {
+
+using a3::test::await_exit;
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
@@ -58,23 +61,6 @@ bool await_requests(const test::SilentEndpoint& endpoint, int n, double timeout_
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   return false;
-}
-
-// Exit status after waiting at most timeout_s (then SIGKILL: -1).
-int await_exit(pid_t pid, double timeout_s, double& waited_s) {
-  const auto t0 = Clock::now();
-  int status = 0;
-  while (::waitpid(pid, &status, WNOHANG) == 0) {
-    waited_s = std::chrono::duration<double>(Clock::now() - t0).count();
-    if (waited_s > timeout_s) {
-      ::kill(pid, SIGKILL);
-      ::waitpid(pid, &status, 0);
-      return -1;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  waited_s = std::chrono::duration<double>(Clock::now() - t0).count();
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 std::string read_text(const fs::path& path) {

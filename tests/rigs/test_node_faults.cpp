@@ -16,8 +16,12 @@
 #include <string>
 #include <thread>
 
+#include "tests/integration/run_command.hpp"
+
 namespace a3 {
 namespace {
+
+using a3::test::await_exit;
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
@@ -50,22 +54,6 @@ pid_t part_pid(pid_t parent, const std::string& part) {
     if (cmdline.find("node part " + part + " ") != std::string::npos) return child;
   }
   return -1;
-}
-
-int await_exit(pid_t pid, double timeout_s, double& waited_s) {
-  const auto t0 = Clock::now();
-  int status = 0;
-  while (::waitpid(pid, &status, WNOHANG) == 0) {
-    waited_s = std::chrono::duration<double>(Clock::now() - t0).count();
-    if (waited_s > timeout_s) {
-      ::kill(pid, SIGKILL);
-      ::waitpid(pid, &status, 0);
-      return -1;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  waited_s = std::chrono::duration<double>(Clock::now() - t0).count();
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 // Flies until the parts are up and the first turn is in, sends `signal` to `part`, and checks
