@@ -11,6 +11,7 @@
 
 #include "a3lcm/episode_event_t.hpp"
 #include "a3lcm/link_record_t.hpp"
+#include "agent/conversation/conversation_node.hpp"
 #include "agent/link_protocol.hpp"
 #include "common/channels.hpp"
 #include "common/node.hpp"
@@ -64,6 +65,17 @@ class FakeLink final : public common::Node {
 
 inline nlohmann::json mcp(const std::string& name) {
   return {{"type", "mcp"}, {"name", name}, {"args", nlohmann::json::object()}};
+}
+
+// A two-turn mission whose supervisor answers after 1 to 2 s.
+inline ConversationConfig two_turns() {
+  ConversationConfig config;
+  config.mission.name = "test";
+  config.min_turns = 2;
+  config.max_turns = 2;
+  config.user_min_wait_s = 1.0;
+  config.user_max_wait_s = 2.0;
+  return config;
 }
 
 }  // namespace a3::agent

@@ -45,16 +45,6 @@ class ThreeStepAgent final : public Agent {
   std::string over_why;
 };
 
-ConversationConfig two_turns() {
-  ConversationConfig config;
-  config.mission.name = "test";
-  config.min_turns = 2;
-  config.max_turns = 2;
-  config.user_min_wait_s = 1.0;
-  config.user_max_wait_s = 2.0;
-  return config;
-}
-
 TEST(MultiStepTurn, EachStepSeesTheObservationsOfTheStepsBefore) {
   common::VirtualRuntime rt;
   FakeLink link;

@@ -15,16 +15,6 @@
 namespace a3::agent {
 namespace {
 
-ConversationConfig two_turns() {
-  ConversationConfig config;
-  config.mission.name = "test";
-  config.min_turns = 2;
-  config.max_turns = 2;
-  config.user_min_wait_s = 1.0;
-  config.user_max_wait_s = 2.0;
-  return config;
-}
-
 // Decides `per_step[i]` read_telemetry actions at step i + 1, continuing while steps remain.
 class FloodingAgent final : public Agent {
  public:
