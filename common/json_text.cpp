@@ -3,6 +3,8 @@
 // which is what makes nlohmann's recursive copy constructor and dump() safe on the result.
 #include "common/json_text.hpp"
 
+#include "common/json_pointer.hpp"
+
 #include <string>
 #include <type_traits>
 #include <unordered_set>
@@ -19,15 +21,6 @@ struct JsonProblem {
   std::string line() const { return location + ": " + problem; }
 };
 
-std::string pointer_token(const std::string& key) {
-  std::string out;
-  for (char c : key) {
-    if (c == '~') out += "~0";
-    else if (c == '/') out += "~1";
-    else out += c;
-  }
-  return out;
-}
 
 // Keeps the text of a key or value readable in a one-line message: invalid UTF-8 replaced,
 // long text cut.
@@ -164,14 +157,14 @@ class BoundedDomBuilder {
     if (stack_.empty()) return "";
     std::string path = path_of_open();
     const OpenContainer<Json>& top = stack_.back();
-    return path + "/" + (top.value->is_array() ? std::to_string(top.next_index) : pointer_token(top.key));
+    return path + "/" + (top.value->is_array() ? std::to_string(top.next_index) : json_pointer_token(top.key));
   }
 
   // The token naming the open child of a container that is not the innermost: its last
   // element or current key.
   static std::string token_of_open_child(const OpenContainer<Json>& open) {
     if (open.value->is_array()) return std::to_string(open.next_index - 1);
-    return pointer_token(open.key);
+    return json_pointer_token(open.key);
   }
 
   int max_depth_;
@@ -230,6 +223,16 @@ std::string dump_json_text(const nlohmann::json& j, int indent) {
 
 std::string dump_json_text(const nlohmann::ordered_json& j, int indent) {
   return j.dump(indent, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+}
+
+std::string json_pointer_token(std::string_view key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '~') out += "~0";
+    else if (c == '/') out += "~1";
+    else out += c;
+  }
+  return out;
 }
 
 }  // namespace a3::common

@@ -1,6 +1,8 @@
 // Depth and duplicate-key checks with an explicit stack; paths are built only for violations.
 #include "eval/json_shape.hpp"
 
+#include "common/json_pointer.hpp"
+
 #include <algorithm>
 #include <string>
 
@@ -9,16 +11,6 @@ namespace {
 
 std::string_view name_of(const rapidjson::Value::Member& m) {
   return {m.name.GetString(), m.name.GetStringLength()};
-}
-
-std::string pointer_token(std::string_view key) {
-  std::string out;
-  for (char c : key) {
-    if (c == '~') out += "~0";
-    else if (c == '/') out += "~1";
-    else out += c;
-  }
-  return out;
 }
 
 // Below this many members, comparing every pair is cheaper than sorting.
@@ -97,7 +89,7 @@ std::string JsonShapeChecker::current_path() const {
     if (f.container->IsArray()) {
       path += "/" + std::to_string(index);
     } else {
-      path += "/" + pointer_token(name_of(*(f.container->MemberBegin() + index)));
+      path += "/" + common::json_pointer_token(name_of(*(f.container->MemberBegin() + index)));
     }
   }
   return path;
