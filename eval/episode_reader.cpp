@@ -12,14 +12,11 @@
 #include <iterator>
 
 #include "eval/episode_document.hpp"
+#include "eval/exact_numbers.hpp"
 #include "eval/utf8.hpp"
 
 namespace a3::eval {
 namespace {
-
-// Iterative: a file of 100k '[' must not overflow the stack (depth is checked after parsing).
-constexpr unsigned kParseFlags =
-    rapidjson::kParseInsituFlag | rapidjson::kParseFullPrecisionFlag | rapidjson::kParseIterativeFlag;
 
 // Why a folder entry that is not a regular file (nor a pipe) is no episode file.
 std::string not_a_file_reason(mode_t mode) {
@@ -165,11 +162,11 @@ EpisodeCheck EpisodeReader::check_buffer(std::size_t size,
   // parsing in place saves copying every string.
   pool_.Clear();
   rapidjson::Document document(&pool_);
-  if (document.ParseInsitu<kParseFlags>(buffer_.data()).HasParseError()) {
+  // Iterative: a file of 100k '[' must not overflow the stack (depth is checked after parsing).
+  if (const auto parsed = parser_.parse_insitu(document, buffer_.data()); parsed.IsError()) {
     // In-place parsing rewrote the buffer: count lines and columns on the original text.
     const std::string original = original_text();
-    return invalid("json-syntax", syntax_message(original, document.GetErrorOffset(),
-                                                 document.GetParseError()));
+    return invalid("json-syntax", syntax_message(original, parsed.Offset(), parsed.Code()));
   }
   EpisodeCheck check;
   check.attempts_used = attempts_used_or_one(document);

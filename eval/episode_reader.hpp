@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "eval/episode_facts.hpp"
+#include "eval/exact_numbers.hpp"
 #include "eval/json_schema_validator.hpp"
 #include "eval/json_shape.hpp"
 #include "eval/scoring_profile.hpp"
@@ -53,6 +54,7 @@ class EpisodeReader {
   std::uintmax_t max_file_bytes_;
   static constexpr std::size_t kPoolChunkBytes = 256u << 10;
   JsonShapeChecker shape_;
+  ExactNumberParser parser_;
   std::string buffer_;  // the file's bytes, parsed in place
   std::vector<char> pool_chunk_;
   rapidjson::MemoryPoolAllocator<> pool_;  // the parsed document's memory
