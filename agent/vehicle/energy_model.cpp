@@ -22,17 +22,21 @@ double EnergyModel::percent_per_m(double speed_mps) const {
   return percent_per_s() * cruise_power_factor / speed_mps;
 }
 
+double EnergyModel::horizontal_time_s(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double speed_mps) const {
+  if (ground_speed) return ground_speed->horizontal_time_s(a.head<2>(), b.head<2>(), speed_mps);
+  return (b.head<2>() - a.head<2>()).norm() / speed_mps;
+}
+
 double EnergyModel::leg_time_s(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double speed_mps) const {
-  const double horizontal_m = (b.head<2>() - a.head<2>()).norm();
   const double dz_m = b.z() - a.z();
-  return horizontal_m / speed_mps + (dz_m > 0.0 ? dz_m / climb_speed_mps : -dz_m / descent_speed_mps);
+  return horizontal_time_s(a, b, speed_mps) + (dz_m > 0.0 ? dz_m / climb_speed_mps : -dz_m / descent_speed_mps);
 }
 
 double EnergyModel::leg_percent(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double speed_mps) const {
-  const double horizontal_m = (b.head<2>() - a.head<2>()).norm();
   const double dz_m = b.z() - a.z();
   const double vertical_s = dz_m > 0.0 ? dz_m / climb_speed_mps : -dz_m / descent_speed_mps;
-  return margin_factor * (horizontal_m * percent_per_m(speed_mps) + vertical_s * percent_per_s());
+  const double horizontal_s = horizontal_time_s(a, b, speed_mps);
+  return margin_factor * percent_per_s() * (cruise_power_factor * horizontal_s + vertical_s);
 }
 
 double EnergyModel::route_time_s(const Eigen::Vector3d& start, const std::vector<Eigen::Vector3d>& waypoints,

@@ -1,13 +1,18 @@
 // The battery cost of flying, as the safety gate estimates it: power drawn × time, with the
-// time of a leg from its horizontal length at the cruise speed and its climb and descent at
-// the vertical speeds, and the return home flown the way the flight controller's
+// time of a leg from its horizontal length at the ground speed the vehicle makes good (the
+// commanded speed in calm air without a ground-speed model; the wind triangle with the fc's
+// limits and the vehicle's wind estimate with one, ground_speed.hpp) and its climb and descent
+// at the vertical speeds, and the return home flown the way the flight controller's
 // RETURN_HOME does it (climb to the return altitude, fly home, land).
 #pragma once
 
 #include <Eigen/Core>
 
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "agent/vehicle/ground_speed.hpp"
 
 namespace a3::agent {
 
@@ -28,12 +33,19 @@ struct EnergyModel {
   double settle_s_per_waypoint = 3.0;
   // The estimate is multiplied by this before it is compared with the battery left.
   double margin_factor = 1.2;
+  // What the vehicle makes good over the ground at a commanded speed (shared with the tool
+  // server, which keeps its wind up to date). nullptr: the commanded speed, as in calm air.
+  std::shared_ptr<const GroundSpeedModel> ground_speed;
 
-  // Battery share drawn per second of hover, and per metre of level flight at speed_mps (%).
+  // Battery share drawn per second of hover, and per metre of level flight at speed_mps over
+  // the ground (%).
   double percent_per_s() const;
   double percent_per_m(double speed_mps) const;
-  // Time and battery share of the straight leg a → b at speed_mps (horizontal), with the
-  // margin factor applied to the share.
+  // Time of the horizontal part of a → b flown at speed_mps (commanded); infinity when the
+  // wind does not let the vehicle make good that course.
+  double horizontal_time_s(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double speed_mps) const;
+  // Time and battery share of the straight leg a → b at speed_mps (horizontal, commanded),
+  // with the margin factor applied to the share.
   double leg_time_s(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double speed_mps) const;
   double leg_percent(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double speed_mps) const;
   // Through every waypoint in order, settling at each.

@@ -1,7 +1,8 @@
 // Motion tools that fly one target or change how the vehicle flies: takeoff, set_waypoint,
 // set_altitude, navigate_to, adjust_speed, hold, land. Gate checks, then an fc command or an
 // onboard route; each answers once the fc's status for its command arrives (or the wait
-// times out).
+// times out). ETAs are at the ground speed made good in the estimated wind (the energy
+// model's), and name that wind.
 #include <algorithm>
 #include <cmath>
 
@@ -50,7 +51,8 @@ void set_waypoint(VehicleServices& vehicle, const nlohmann::json& args) {
               {{"target", point_json(target)},
                {"distance_m", rounded((target - p).norm(), 1)},
                {"speed_mps", rounded(speed, 2)},
-               {"eta_s", rounded(eta_s, 1)}});
+               {"eta_s", rounded(eta_s, 1)},
+               {"wind", wind_estimate_json(vehicle.wind_estimate())}});
 }
 
 void set_altitude(VehicleServices& vehicle, const nlohmann::json& args) {
@@ -91,7 +93,8 @@ void navigate_to(VehicleServices& vehicle, const nlohmann::json& args) {
                {"first_target", point_json(targets.front())},
                {"route_length_m", rounded(length, 1)},
                {"speed_mps", rounded(speed, 2)},
-               {"eta_s", rounded(eta_s, 1)}});
+               {"eta_s", rounded(eta_s, 1)},
+               {"wind", wind_estimate_json(vehicle.wind_estimate())}});
 }
 
 void adjust_speed(VehicleServices& vehicle, const nlohmann::json& args) {

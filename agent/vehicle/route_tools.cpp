@@ -1,6 +1,7 @@
 // Motion tools that plan an onboard route on the vehicle: execute_maneuver (orbit, survey
 // with optional captures, yaw) and return_to_home (direct, or a detour around no-fly zones
-// then a landing). Each answers once the fc's status for its first command arrives.
+// then a landing). Each answers once the fc's status for its first command arrives. ETAs are
+// at the ground speed made good in the estimated wind, and name that wind.
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -115,6 +116,7 @@ void execute_maneuver(VehicleServices& vehicle, const nlohmann::json& args) {
   extra["waypoints"] = targets.size();
   extra["route_length_m"] = rounded(route_length_m(p, targets), 1);
   extra["eta_s"] = rounded(vehicle.gate().energy().route_time_s(p, targets, speed), 1);
+  extra["wind"] = wind_estimate_json(vehicle.wind_estimate());
   start_route(vehicle, OnboardRoute(maneuver, std::move(plan->points), speed, RouteEnd::kHold, plan->capture_sensor),
               std::move(extra));
 }
@@ -138,7 +140,8 @@ void return_by_detour(VehicleServices& vehicle, const Eigen::Vector3d& p, const 
                           {"route_length_m", rounded(plan->length_m, 1)},
                           {"eta_s", rounded(gate.energy().route_time_s(p, plan->waypoints, speed) +
                                                 above_home.z() / gate.energy().descent_speed_mps,
-                                            1)}};
+                                            1)},
+                          {"wind", wind_estimate_json(vehicle.wind_estimate())}};
   start_route(vehicle, OnboardRoute("return_to_home", std::move(points), speed, RouteEnd::kLand), std::move(extra));
 }
 
@@ -163,7 +166,8 @@ void return_to_home(VehicleServices& vehicle, const nlohmann::json&) {
   nlohmann::json extra = {{"route", "direct"},
                           {"home", point_json(home)},
                           {"distance_m", rounded((home.head<2>() - p.head<2>()).norm(), 1)},
-                          {"eta_s", rounded(vehicle.gate().energy().route_time_s(p, legs, speed), 1)}};
+                          {"eta_s", rounded(vehicle.gate().energy().route_time_s(p, legs, speed), 1)},
+                          {"wind", wind_estimate_json(vehicle.wind_estimate())}};
   vehicle.await_status(seq, [&vehicle, extra](const a3lcm::fc_status_t* s) { answer_motion(vehicle, s, extra); });
 }
 

@@ -1,9 +1,11 @@
 // What the simulated peers know of our vehicle: its true position and velocity (A3_STATE, else
 // the fc's estimate) and the path it is about to fly, predicted from what it was told to do:
-// the onboard route's remaining waypoints at the route's speed, the take-off climb, the
+// the onboard route's remaining waypoints at the ground speed it makes good at the route's
+// speed in the estimated wind (EnergyModel::leg_time_s), the take-off climb, the
 // fc's return home or landing; holding still in HOLD or on the ground; straight on at its
 // velocity when the fc flies somewhere the tool server did not send it.
 #include <algorithm>
+#include <cmath>
 
 #include "agent/vehicle/tool_server_node.hpp"
 
@@ -51,7 +53,8 @@ SelfView ToolServerNode::self_view() const {
   double t = view.now_s;
   Eigen::Vector3d from = view.p_W_m;
   for (const auto& target : targets) {
-    const double dt = gate_.energy().leg_time_s(from, target, speed);
+    const double dt = gate_.energy().leg_time_s(from, target, speed);  // at the ground speed made good
+    if (!std::isfinite(dt)) break;  // the wind holds the vehicle where it is
     if (dt <= 1e-6) continue;
     t += dt;
     view.predicted.path.push_back({t, target});

@@ -40,6 +40,7 @@ struct ToolServerConfig {
   nlohmann::json sensors = nlohmann::json::object();
   nlohmann::json payloads = nlohmann::json::array();
   EnergyModel energy;       // battery cost estimate (hover power, capacity, speeds, margin)
+  AirframeLimits airframe;  // fc limits and drag: the ground speed made good in wind (ground_speed.hpp)
   GateConfig gate;          // margins, battery reserve, speed limit, return altitude
   ImageSizes images;        // bytes per image by sensor kind
   SwarmConfig swarm;        // collision-avoidance prediction and yielding

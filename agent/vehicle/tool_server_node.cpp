@@ -36,20 +36,28 @@ const ToolServerConfig& validated(const ToolServerConfig& c) {
   return c;
 }
 
+ToolServerConfig with_ground_speed(ToolServerConfig c, std::shared_ptr<const GroundSpeedModel> ground_speed) {
+  c.energy.ground_speed = std::move(ground_speed);
+  return c;
+}
+
 }  // namespace
 
 ToolServerNode::ToolServerNode(ToolServerConfig config, const ToolCatalog& catalog, const ToolHandlers& handlers)
-    : config_(validated(config)),
+    : ground_speed_(std::make_shared<GroundSpeedModel>(config.airframe)),
+      config_(with_ground_speed(validated(config), ground_speed_)),
       catalog_(catalog),
       handlers_(handlers),
       gate_(config_.airspace, config_.gate, config_.energy, config_.home_W_m),
       sensors_(config_.sensors, config_.payloads, config_.images),
       swarm_(config_.airspace.traffic, config_.swarm),
       weather_(config_.env, config_.weather),
+      wind_(config_.airframe, wind_from_report(weather_.wind_mps(), weather_.wind_dir_deg())),
       ground_station_(gate_, config_.planner),
       speed_mps_(config_.energy.cruise_speed_mps),
       counters_(std::make_unique<AtomicCounters>(counter_set_)) {
   handlers_.check_against(catalog_);
+  ground_speed_->set_wind_W_mps(wind_.wind_W_mps());
 }
 
 ToolServerNode::~ToolServerNode() = default;
@@ -62,7 +70,7 @@ void ToolServerNode::start(common::Executor& executor, common::Bus& bus) {
                                        [this](const a3lcm::link_message_t& m, int64_t) { on_link_message(m); });
   bus.subscribe<a3lcm::fc_status_t>(ch::kFcStatus, [this](const a3lcm::fc_status_t& s, int64_t) { on_fc_status(s); });
   bus.subscribe<a3lcm::vehicle_state_t>(ch::kState,
-                                        [this](const a3lcm::vehicle_state_t& s, int64_t) { true_state_ = s; });
+                                        [this](const a3lcm::vehicle_state_t& s, int64_t) { on_true_state(s); });
   bus.subscribe<a3lcm::network_state_t>(ch::kNet, [this](const a3lcm::network_state_t& n, int64_t) { net_ = n; });
   bus.subscribe<a3lcm::slice_switch_reply_t>(
       ch::kSliceReply, [this](const a3lcm::slice_switch_reply_t& r, int64_t) { on_slice_reply(r); });
@@ -129,6 +137,18 @@ void ToolServerNode::on_fc_status(const a3lcm::fc_status_t& s) {
     then(&s);
   }
   if (route_) advance_route(s);
+}
+
+void ToolServerNode::on_true_state(const a3lcm::vehicle_state_t& s) {
+  true_state_ = s;
+  WindSample sample;
+  sample.t_s = static_cast<double>(s.utime_us) * 1e-6;
+  sample.v_W_mps = Eigen::Vector3d(s.v_W_mps[0], s.v_W_mps[1], s.v_W_mps[2]);
+  sample.q_WB = Eigen::Quaterniond(s.q_WB[0], s.q_WB[1], s.q_WB[2], s.q_WB[3]);
+  sample.f_B_mps2 = Eigen::Vector3d(s.a_B_mps2[0], s.a_B_mps2[1], s.a_B_mps2[2]);
+  sample.on_ground = s.on_ground;
+  wind_.add(sample);
+  ground_speed_->set_wind_W_mps(wind_.wind_W_mps());
 }
 
 void ToolServerNode::on_slice_reply(const a3lcm::slice_switch_reply_t& r) {

@@ -50,6 +50,7 @@
 #include "agent/vehicle/vehicle_services.hpp"
 #include "agent/vehicle/vehicle_tools.hpp"
 #include "agent/vehicle/weather_service.hpp"
+#include "agent/vehicle/wind_estimator.hpp"
 #include "common/node.hpp"
 
 namespace a3::agent {
@@ -82,6 +83,7 @@ class ToolServerNode final : public common::Node, private VehicleServices {
   const SensorSuite& sensors() const { return sensors_; }
   const OnboardRoute* route() const { return route_ ? &*route_ : nullptr; }
   const ToolServerConfig& config() const override { return config_; }
+  const WindEstimator& wind_estimate() const override { return wind_; }
 
  private:
   struct AtomicCounters {
@@ -94,6 +96,7 @@ class ToolServerNode final : public common::Node, private VehicleServices {
   void on_link_message(const a3lcm::link_message_t& m);
   void on_fc_status(const a3lcm::fc_status_t& s);
   void on_slice_reply(const a3lcm::slice_switch_reply_t& r);
+  void on_true_state(const a3lcm::vehicle_state_t& s);
   void publish_traffic();
 
   // The action queue and the dispatch by name to the handlers (tool_server_node.cpp).
@@ -134,6 +137,9 @@ class ToolServerNode final : public common::Node, private VehicleServices {
   double now_s() const override;
   int64_t now_us() const override;
 
+  // The ground speed the energy model (and so the gate, the ETAs and the peers' view of our
+  // track) assumes; its wind follows wind_. Made before config_, which shares it.
+  std::shared_ptr<GroundSpeedModel> ground_speed_;
   ToolServerConfig config_;
   const ToolCatalog& catalog_;
   ToolHandlers handlers_;
@@ -141,6 +147,7 @@ class ToolServerNode final : public common::Node, private VehicleServices {
   SensorSuite sensors_;
   SwarmPeer swarm_;
   WeatherService weather_;
+  WindEstimator wind_;  // seeded by weather_'s forecast, learned from A3_STATE
   GroundStation ground_station_;
   ImageStore images_;
 

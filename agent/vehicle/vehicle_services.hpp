@@ -25,6 +25,7 @@
 #include "agent/vehicle/swarm_peer.hpp"
 #include "agent/vehicle/tool_server_config.hpp"
 #include "agent/vehicle/weather_service.hpp"
+#include "agent/vehicle/wind_estimator.hpp"
 
 namespace a3::agent {
 
@@ -80,6 +81,8 @@ class VehicleServices {
 
   virtual const SafetyGate& gate() const = 0;
   virtual const ToolServerConfig& config() const = 0;
+  // The wind the ETAs and battery estimates assume (gate().energy() flies its ground speed).
+  virtual const WindEstimator& wind_estimate() const = 0;
   virtual double now_s() const = 0;
   virtual int64_t now_us() const = 0;
 

@@ -85,6 +85,9 @@ RigConfigs make_rig_configs(const Scenario& s, const RunOptions& o) {
   t.gate.return_altitude_m = c.fc.params.failsafe.return_altitude_m;
   t.gate.geofence_margin_m = std::max(t.gate.geofence_margin_m, c.fc.params.failsafe.fence_margin_m);
   t.gate.max_speed_mps = c.fc.params.limits.max_horizontal_speed_mps;
+  t.airframe = {c.fc.params.vehicle.mass_kg, c.dynamics.params.aero.linear_drag_Ns_per_m,
+                c.dynamics.params.aero.drag_cdA_m2, dynamics::kAirDensity_kgpm3, c.fc.params.limits.max_tilt_deg,
+                c.fc.params.limits.max_horizontal_accel_mps2, c.fc.params.limits.max_horizontal_speed_mps};
   c.monitor.airspace = s.airspace;
 
   // Ground side.
