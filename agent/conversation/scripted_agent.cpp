@@ -1,10 +1,15 @@
 // The reference policy.
 #include "agent/conversation/scripted_agent.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace a3::agent {
 namespace {
+
+// Telemetry within these of the commanded altitude and speed counts as "at rest there".
+constexpr double kAltitudeTolerance_m = 3.0;
+constexpr double kRestSpeed_mps = 1.0;
 
 nlohmann::json mcp(const std::string& name, nlohmann::json args = nlohmann::json::object()) {
   return {{"type", "mcp"}, {"name", name}, {"args", std::move(args)}};
@@ -24,6 +29,11 @@ double number(const nlohmann::json& j, const char* key, double fallback) {
   return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : fallback;
 }
 
+bool is_motion(const nlohmann::json& action) {
+  const std::string name = action.value("name", "");
+  return name == "takeoff" || name == "set_waypoint" || name == "navigate_to" || name == "execute_maneuver";
+}
+
 // Where an objective's work starts (for planning a route to it).
 Eigen::Vector2d objective_anchor(const Objective& o) {
   if (o.type == ObjectiveType::kSurvey || o.type == ObjectiveType::kThermalSearch) {
@@ -32,199 +42,309 @@ Eigen::Vector2d objective_anchor(const Objective& o) {
   return o.point;
 }
 
-}  // namespace
+ScriptedAgent::Leg area_leg(const Objective& o) {
+  ScriptedAgent::Leg leg;
+  const bool thermal = o.type == ObjectiveType::kThermalSearch;
+  const std::string sensor = thermal ? "thermal" : o.sensor;
+  if (sensor != "rgb") leg.actions.push_back(mcp("activate_sensor", {{"sensor", sensor}}));
+  const double spacing = thermal ? std::max(10.0, 1.6 * o.radius_m) : 30.0;
+  leg.actions.push_back(mcp("execute_maneuver", {{"maneuver", "survey"},
+                                                 {"area", polygon_json(o.area)},
+                                                 {"z", o.altitude_m},
+                                                 {"spacing_m", spacing},
+                                                 {"capture", true},
+                                                 {"sensor", sensor}}));
+  leg.intent = thermal ? "thermal_search" : "area_survey";
+  leg.text = thermal ? "Searching " + o.id + " with the thermal camera." : "Surveying " + o.id + ".";
+  leg.ends_at_point = false;
+  leg.end_W_m = Eigen::Vector3d(objective_anchor(o).x(), objective_anchor(o).y(), o.altitude_m);
+  return leg;
+}
 
-bool ScriptedAgent::still_flying_a_route(const AgentContext& c) const {
-  // The newest telemetry in the dialogue: moving on a route or toward a target.
-  for (auto t = c.dialogue->rbegin(); t != c.dialogue->rend(); ++t) {
-    for (const auto& o : t->obs) {
-      if (o.is_object() && o.value("tool", "") == "read_telemetry" && o.contains("result") && o["result"].is_object()) {
-        const auto& r = o["result"];
-        const std::string mode = r.value("mode", "");
-        return (mode == "goto" || mode == "takeoff") && r.contains("route") && r["route"].is_object();
+ScriptedAgent::Leg image_leg(const Objective& o) {
+  ScriptedAgent::Leg leg;
+  leg.actions.push_back(mcp("set_waypoint", {{"x", o.point.x()}, {"y", o.point.y()}, {"z", o.altitude_m}}));
+  leg.intent = "navigate_to_target";
+  leg.text = "Flying to " + o.id + " to image it.";
+  leg.end_W_m = Eigen::Vector3d(o.point.x(), o.point.y(), o.altitude_m);
+  leg.capture = true;
+  if (o.sensor != "rgb") leg.capture_actions.push_back(mcp("activate_sensor", {{"sensor", o.sensor}}));
+  leg.capture_actions.push_back(mcp("capture_image", {{"sensor", o.sensor}}));
+  leg.capture_intent = "capture_target";
+  leg.capture_text = "At " + o.id + ", settled at the commanded altitude: capturing it.";
+  return leg;
+}
+
+ScriptedAgent::Leg delivery_leg(const Objective& o, double cruise_z_m) {
+  ScriptedAgent::Leg leg;
+  const double drop_z_m = std::max(2.0, o.drop_altitude_m - 3.0);
+  leg.actions.push_back(mcp("navigate_to", {{"waypoints",
+                                             {{o.point.x(), o.point.y(), cruise_z_m},
+                                              {o.point.x(), o.point.y(), drop_z_m}}}}));
+  leg.intent = "deliver_package";
+  leg.text = "Flying the parcel to " + o.id + " and descending to drop it.";
+  leg.end_W_m = Eigen::Vector3d(o.point.x(), o.point.y(), drop_z_m);
+  return leg;
+}
+
+// The turn at dialogue index i, if it is in the dialogue yet.
+const Turn* turn_at(const AgentContext& c, int i) {
+  return i >= 0 && i < static_cast<int>(c.dialogue->size()) ? &(*c.dialogue)[i] : nullptr;
+}
+
+// Every motion command of the turn was accepted by the vehicle.
+bool motion_accepted(const Turn& t) {
+  for (std::size_t i = 0; i < t.actions.size() && i < t.obs.size(); ++i) {
+    if (!is_motion(t.actions[i])) continue;
+    const nlohmann::json& o = t.obs[i];
+    const bool ok = o.is_object() && o.contains("result") && o["result"].is_object() &&
+                    o["result"].value("status", "") == "accepted";
+    if (!ok) return false;
+  }
+  return true;
+}
+
+// The newest read_telemetry result of the turns after index `after`, or null; *turn_index: its turn.
+const nlohmann::json* telemetry_after(const AgentContext& c, int after, int* turn_index) {
+  for (int i = static_cast<int>(c.dialogue->size()) - 1; i > after; --i) {
+    const Turn& t = (*c.dialogue)[i];
+    for (auto o = t.obs.rbegin(); o != t.obs.rend(); ++o) {
+      if (o->is_object() && o->value("tool", "") == "read_telemetry" && o->contains("result") &&
+          (*o)["result"].is_object() && (*o)["result"].contains("pose")) {
+        *turn_index = i;
+        return &(*o)["result"];
       }
+    }
+  }
+  return nullptr;
+}
+
+// The supervisor has confirmed the objective done ("Confirmed: a, b done.") after index `after`.
+bool supervisor_confirmed(const AgentContext& c, int after, const std::string& id) {
+  const std::string prefix = "Confirmed: ";
+  for (int i = after + 1; i < static_cast<int>(c.dialogue->size()); ++i) {
+    const Turn& t = (*c.dialogue)[i];
+    if (t.speaker != "user" || t.intent != "acknowledge_progress" || t.text.rfind(prefix, 0) != 0) continue;
+    const std::size_t end = t.text.find(" done.");
+    std::string names = t.text.substr(prefix.size(), end == std::string::npos ? std::string::npos : end - prefix.size());
+    for (std::size_t start = 0; start <= names.size();) {
+      const std::size_t comma = names.find(", ", start);
+      if (names.substr(start, comma == std::string::npos ? std::string::npos : comma - start) == id) return true;
+      if (comma == std::string::npos) break;
+      start = comma + 2;
     }
   }
   return false;
 }
+
+// The supervisor's latest turn asks for status or confirms the start: it speaks so only once the
+// vehicle has come to rest (or after a long silence), not for an objective, a link or traffic.
+bool supervisor_saw_rest(const AgentContext& c) {
+  if (c.dialogue->empty()) return false;
+  const Turn& t = c.dialogue->back();
+  return t.speaker == "user" && (t.intent == "request_status" || t.intent == "confirm_mission_start");
+}
+
+ScriptedAgent::LegStatus status_from_telemetry(const nlohmann::json& tel, const ScriptedAgent::Leg& leg) {
+  const std::string mode = tel.value("mode", "");
+  const bool on_route = tel.contains("route") && tel["route"].is_object();
+  if (mode == "goto" || mode == "takeoff" || on_route) return ScriptedAgent::LegStatus::kFlying;
+  if (mode != "hold") return ScriptedAgent::LegStatus::kLost;
+  if (!leg.ends_at_point) return ScriptedAgent::LegStatus::kDone;
+  const Eigen::Vector2d p(number(tel["pose"], "x", 1e9), number(tel["pose"], "y", 1e9));
+  const double z_m = number(tel["pose"], "z", -1e9);
+  const double within_m = leg.capture ? leg.radius_m : std::max(leg.radius_m, 5.0);
+  const bool there = (p - leg.end_W_m.head<2>()).norm() <= within_m &&
+                     std::abs(z_m - leg.end_W_m.z()) <= kAltitudeTolerance_m &&
+                     number(tel, "speed_mps", 1e9) <= kRestSpeed_mps;
+  return there ? ScriptedAgent::LegStatus::kDone : ScriptedAgent::LegStatus::kLost;
+}
+
+}  // namespace
 
 bool is_hard_network(const nlohmann::json& net) {
   return number(net, "lat_ms", 0) > 40 || number(net, "loss_pct", 0) >= 1 || number(net, "throughput_mbps", 1e9) < 5 ||
          number(net, "edge_load", 0) > 0.8;
 }
 
-std::vector<nlohmann::json> ScriptedAgent::route_from_path_plan(const AgentContext& context) const {
-  // The ground station's path_plan answer from the pre-flight turn, if there was one.
-  for (const Turn& t : *context.dialogue) {
-    for (const auto& o : t.obs) {
-      if (o.value("task", "") == "path_plan" && o.value("status", "") == "ok" && o.contains("payload") &&
-          o["payload"].contains("waypoints") && o["payload"]["waypoints"].is_array()) {
-        std::vector<nlohmann::json> out;
-        for (const auto& w : o["payload"]["waypoints"]) out.push_back(w);
-        return out;
-      }
-    }
-  }
-  return {};
+ScriptedAgent::LegStatus leg_status(const AgentContext& c, const ScriptedAgent::Leg& leg, int leg_turn_index) {
+  const Turn* sent = turn_at(c, leg_turn_index);
+  if (sent == nullptr) return ScriptedAgent::LegStatus::kUnknown;
+  if (!motion_accepted(*sent)) return ScriptedAgent::LegStatus::kLost;
+  if (!leg.capture && supervisor_confirmed(c, leg_turn_index, leg.objective_id)) return ScriptedAgent::LegStatus::kDone;
+  // The newest evidence decides: telemetry of the supervisor's latest turn, else the supervisor's
+  // word that the vehicle has come to rest since, else older telemetry.
+  int tel_turn = -1;
+  const nlohmann::json* tel = telemetry_after(c, leg_turn_index, &tel_turn);
+  const bool latest = tel != nullptr && tel_turn == static_cast<int>(c.dialogue->size()) - 1;
+  if (latest) return status_from_telemetry(*tel, leg);
+  if (supervisor_saw_rest(c)) return ScriptedAgent::LegStatus::kDone;
+  return tel != nullptr ? status_from_telemetry(*tel, leg) : ScriptedAgent::LegStatus::kUnknown;
 }
 
 void ScriptedAgent::plan(const AgentContext& c) {
   const Mission& m = *c.mission;
-  const double z = m.cruise_altitude_m;
-  // Turn 1: pre-flight.
-  Step pre{"preflight_check", "Checking telemetry, geofence and weather before launch.", {}};
-  pre.actions.push_back(mcp("read_telemetry"));
-  pre.actions.push_back(mcp("check_geofence"));
-  pre.actions.push_back(a2a("request_weather_update", "weather_service"));
-  const bool has_zones = c.airspace.contains("no_fly_zones") && !c.airspace["no_fly_zones"].empty();
-  const Objective* first_leg = nullptr;
   for (const auto& o : m.objectives) {
-    if (o.type != ObjectiveType::kReturnAndLand) {
-      first_leg = &o;
-      break;
-    }
-  }
-  if (has_zones && first_leg != nullptr) {
-    const Eigen::Vector2d goal = objective_anchor(*first_leg);
-    pre.actions.push_back(a2a("path_plan", "ground_station",
-                              {{"start", {m.home_W_m.x(), m.home_W_m.y()}}, {"goal", {goal.x(), goal.y()}}, {"z", z}}));
-  }
-  if (c.airspace.contains("traffic") && !c.airspace["traffic"].empty()) {
-    pre.actions.push_back(a2a("swarm_status_check", "uav_swarm_agent"));
-  }
-  steps_.push_back(pre);
-
-  // Take-off, then one turn per objective.
-  bool launched = false;
-  for (const auto& o : m.objectives) {
-    if (o.type == ObjectiveType::kReturnAndLand) continue;
-    Step s{"", "", {}};
-    if (!launched) {
-      s.actions.push_back(mcp("takeoff", {{"altitude_m", z}}));
-      launched = true;
-    }
+    Leg leg;
     switch (o.type) {
       case ObjectiveType::kSurvey:
-      case ObjectiveType::kThermalSearch: {
-        const bool thermal = o.type == ObjectiveType::kThermalSearch;
-        const std::string sensor = thermal ? "thermal" : o.sensor;
-        if (sensor != "rgb") s.actions.push_back(mcp("activate_sensor", {{"sensor", sensor}}));
-        const double spacing = thermal ? std::max(10.0, 1.6 * o.radius_m) : 30.0;
-        s.actions.push_back(mcp("execute_maneuver", {{"maneuver", "survey"},
-                                                     {"area", polygon_json(o.area)},
-                                                     {"z", o.altitude_m},
-                                                     {"spacing_m", spacing},
-                                                     {"capture", true},
-                                                     {"sensor", sensor}}));
-        s.intent = thermal ? "thermal_search" : "area_survey";
-        s.text = thermal ? "Searching " + o.id + " with the thermal camera." : "Surveying " + o.id + ".";
-        break;
-      }
-      case ObjectiveType::kImagePoint:
-        s.actions.push_back(mcp("set_waypoint", {{"x", o.point.x()}, {"y", o.point.y()}, {"z", o.altitude_m}}));
-        s.intent = "navigate_to_target";
-        s.text = "Flying to " + o.id + " to image it.";
-        steps_.push_back(s);
-        s = Step{"capture_target", "Capturing " + o.id + ".", {}};
-        s.needs_arrival = true;
-        s.at = o.point;
-        s.arrive_within_m = std::max(10.0, 2.0 * o.radius_m);
-        if (o.sensor != "rgb") s.actions.push_back(mcp("activate_sensor", {{"sensor", o.sensor}}));
-        s.actions.push_back(mcp("capture_image", {{"sensor", o.sensor}}));
-        break;
-      case ObjectiveType::kDelivery:
-        s.actions.push_back(mcp("navigate_to", {{"waypoints",
-                                                 {{o.point.x(), o.point.y(), z},
-                                                  {o.point.x(), o.point.y(), std::max(2.0, o.drop_altitude_m - 3.0)}}}}));
-        s.intent = "deliver_package";
-        s.text = "Flying the parcel to " + o.id + " and descending to drop it.";
-        break;
-      case ObjectiveType::kReturnAndLand:
-        break;
+      case ObjectiveType::kThermalSearch: leg = area_leg(o); break;
+      case ObjectiveType::kImagePoint: leg = image_leg(o); break;
+      case ObjectiveType::kDelivery: leg = delivery_leg(o, m.cruise_altitude_m); break;
+      case ObjectiveType::kReturnAndLand: continue;
     }
-    steps_.push_back(s);
+    leg.objective_id = o.id;
+    leg.radius_m = o.radius_m;
+    legs_.push_back(std::move(leg));
   }
-  steps_.push_back({"return_to_home", "Mission tasks done: returning home to land.", {mcp("return_to_home")}});
-  steps_.push_back({"confirm_landing", "Confirming the landing.", {mcp("read_telemetry")}});
+  preflight_ = {"preflight_check", "Checking telemetry, geofence and weather before launch.", {}};
+  preflight_.actions.push_back(mcp("read_telemetry"));
+  preflight_.actions.push_back(mcp("check_geofence"));
+  preflight_.actions.push_back(a2a("request_weather_update", "weather_service"));
+  const bool has_zones = c.airspace.contains("no_fly_zones") && !c.airspace["no_fly_zones"].empty();
+  const auto first = std::find_if(m.objectives.begin(), m.objectives.end(),
+                                  [](const Objective& o) { return o.type != ObjectiveType::kReturnAndLand; });
+  if (has_zones && first != m.objectives.end()) {
+    const Eigen::Vector2d goal = objective_anchor(*first);
+    preflight_.actions.push_back(a2a("path_plan", "ground_station",
+                                     {{"start", {m.home_W_m.x(), m.home_W_m.y()}},
+                                      {"goal", {goal.x(), goal.y()}},
+                                      {"z", m.cruise_altitude_m}}));
+  }
+  if (c.airspace.contains("traffic") && !c.airspace["traffic"].empty()) {
+    preflight_.actions.push_back(a2a("swarm_status_check", "uav_swarm_agent"));
+  }
 }
 
-bool ScriptedAgent::last_leg_done(const AgentContext& c) const {
-  if (leg_turn_index_ < 0) return true;
-  const auto& turns = *c.dialogue;
-  for (int i = static_cast<int>(turns.size()) - 1; i > leg_turn_index_; --i) {
-    for (auto o = turns[i].obs.rbegin(); o != turns[i].obs.rend(); ++o) {
-      if (o->is_object() && o->value("tool", "") == "read_telemetry" && o->contains("result") &&
-          (*o)["result"].is_object()) {
-        const std::string mode = (*o)["result"].value("mode", "");
-        return mode != "goto" && mode != "takeoff";
+int ScriptedAgent::turns_needed_after_preflight() const {
+  int turns = 0;
+  bool after_capture = false;
+  for (std::size_t i = leg_; i < legs_.size(); ++i) {
+    // A leg's motion takes a turn of its own, or rides on the capture before it and then needs
+    // a check on the way (the supervisor acknowledges that capture at once).
+    if (!(i == leg_ && leg_sent_)) ++turns;
+    if (legs_[i].capture) ++turns;
+    after_capture = legs_[i].capture;
+  }
+  if (!returned_ && !after_capture) ++turns;  // the return rides on a last capture
+  return turns;
+}
+
+std::vector<nlohmann::json> ScriptedAgent::route_for(const AgentContext& c, const nlohmann::json& motion) {
+  // The ground station's path_plan answer (pre-flight, for the first leg from home), if any.
+  std::vector<nlohmann::json> route;
+  for (const Turn& t : *c.dialogue) {
+    for (const auto& o : t.obs) {
+      if (o.value("task", "") == "path_plan" && o.value("status", "") == "ok" && o.contains("payload") &&
+          o["payload"].contains("waypoints") && o["payload"]["waypoints"].is_array()) {
+        for (const auto& w : o["payload"]["waypoints"]) route.push_back(w);
       }
     }
   }
-  return false;
-}
-
-bool ScriptedAgent::arrived(const AgentContext& c, const Step& step) {
-  if (!step.needs_arrival) return true;
-  const nlohmann::json& t = c.last_telemetry;
-  if (!t.is_object() || !t.contains("pose") || !t["pose"].is_object()) return false;
-  const Eigen::Vector2d p(number(t["pose"], "x", 1e9), number(t["pose"], "y", 1e9));
-  return (p - step.at).norm() <= step.arrive_within_m;
-}
-
-AgentDecision ScriptedAgent::decide(const AgentContext& c) {
-  if (!planned_) {
-    plan(c);
-    planned_ = true;
-  }
-  AgentDecision d;
-  const int agent_turns_left = (c.max_turns - c.turn_number) / 2 + 1;
-  Step step;
-  if (still_flying_a_route(c) && agent_turns_left > static_cast<int>(steps_.size())) {
-    // The last leg is still being flown: check on it rather than start the next one.
-    step = {"monitor_progress", "The current leg is still in progress; monitoring.", {mcp("read_telemetry")}};
-  } else if (!steps_.empty() && (!last_leg_done(c) || !arrived(c, steps_.front())) &&
-             agent_turns_left > static_cast<int>(steps_.size())) {
-    // Not at the place of the next step yet (as far as the telemetry says): check on the way.
-    step = {"monitor_progress", "The last leg is not confirmed done; checking position.", {mcp("read_telemetry")}};
-  } else if (steps_.empty()) {
-    step = {"status_report", "Reporting status.", {mcp("read_telemetry")}};
-  } else if (static_cast<int>(steps_.size()) > agent_turns_left && steps_.size() >= 3) {
-    // Running out of turns: fold the next two steps into one.
-    step = steps_.front();
-    steps_.pop_front();
-    for (auto& a : steps_.front().actions) step.actions.push_back(a);
-    step.intent += "+" + steps_.front().intent;
-    steps_.pop_front();
+  if (route.empty()) return route;
+  // The planner's detour, ending with the leg's own waypoints: its target altitude, its descent.
+  const std::string name = motion.value("name", "");
+  const nlohmann::json& args = motion["args"];
+  if (name == "set_waypoint") {
+    route.back() = {args["x"], args["y"], args["z"]};
+  } else if (name == "navigate_to") {
+    const nlohmann::json& own = args["waypoints"];
+    route.back() = own.front();
+    for (std::size_t i = 1; i < own.size(); ++i) route.push_back(own[i]);
   } else {
-    step = steps_.front();
-    steps_.pop_front();
+    route.clear();
   }
+  return route;
+}
 
-  // The first leg follows the ground station's route around no-fly zones, if it gave one:
-  // the route replaces the motion toward the first objective.
-  std::vector<nlohmann::json> actions;
-  for (auto& a : step.actions) {
-    const std::string name = a.value("name", "");
-    auto route = route_from_path_plan(c);
-    if (!route.empty() && !detour_flown_ && (name == "set_waypoint" || name == "navigate_to")) {
-      detour_flown_ = true;
-      if (name == "set_waypoint") {
-        route.back() = {a["args"]["x"], a["args"]["y"], a["args"]["z"]};
+void ScriptedAgent::add_leg_motion(const AgentContext& c, Choice* choice) {
+  const Leg& leg = legs_[leg_];
+  if (!launched_) {
+    choice->actions.push_back(mcp("takeoff", {{"altitude_m", c.mission->cruise_altitude_m}}));
+    launched_ = true;
+  }
+  for (const auto& a : leg.actions) {
+    auto route = leg_ == 0 && is_motion(a) ? route_for(c, a) : std::vector<nlohmann::json>{};
+    choice->actions.push_back(route.empty() ? a : mcp("navigate_to", {{"waypoints", route}}));
+  }
+  choice->intent += (choice->intent.empty() ? "" : "+") + leg.intent;
+  choice->text += (choice->text.empty() ? "" : " ") + leg.text;
+  leg_sent_ = true;
+  leg_turn_index_ = static_cast<int>(c.dialogue->size());
+}
+
+void ScriptedAgent::add_return(Choice* choice) {
+  choice->actions.push_back(mcp("return_to_home"));
+  choice->intent += std::string(choice->intent.empty() ? "" : "+") + "return_to_home";
+  choice->text += std::string(choice->text.empty() ? "" : " ") + "Mission tasks done: returning home to land.";
+  returned_ = true;
+}
+
+ScriptedAgent::Choice ScriptedAgent::preflight_choice(const AgentContext& c) {
+  const int agent_turns_left = (c.max_turns - c.turn_number) / 2 + 1;
+  Choice choice = preflight_;
+  preflight_done_ = true;
+  // Short of turns: launch with the pre-flight, onto the first leg.
+  if (!legs_.empty() && 1 + turns_needed_after_preflight() > agent_turns_left) add_leg_motion(c, &choice);
+  return choice;
+}
+
+ScriptedAgent::Choice ScriptedAgent::after_leg_done(const AgentContext& c, int agent_turns_left) {
+  Choice choice;
+  const Leg& done = legs_[leg_];
+  if (done.capture) {
+    choice = {done.capture_intent, done.capture_text, done.capture_actions};
+  }
+  ++leg_;
+  leg_sent_ = false;
+  // Capture first, then move on: the next leg, or home when there is none or no turn after this.
+  if (leg_ < legs_.size() && agent_turns_left > 1) {
+    add_leg_motion(c, &choice);
+  } else {
+    add_return(&choice);
+  }
+  return choice;
+}
+
+ScriptedAgent::Choice ScriptedAgent::next_choice(const AgentContext& c) {
+  const int agent_turns_left = (c.max_turns - c.turn_number) / 2 + 1;
+  if (!preflight_done_) return preflight_choice(c);
+  if (returned_) {
+    const bool first_after = !c.dialogue->empty() && c.dialogue->back().intent == "acknowledge_landing";
+    return {first_after ? "confirm_landing" : "status_report",
+            first_after ? "Confirming the landing." : "Reporting status.", {mcp("read_telemetry")}};
+  }
+  Choice choice;
+  if (leg_ >= legs_.size()) {
+    add_return(&choice);
+    return choice;
+  }
+  if (!leg_sent_) {
+    add_leg_motion(c, &choice);
+    return choice;
+  }
+  switch (leg_status(c, legs_[leg_], leg_turn_index_)) {
+    case LegStatus::kDone:
+      return after_leg_done(c, agent_turns_left);
+    case LegStatus::kLost:
+      if (agent_turns_left > 1) {
+        choice = {"", "The last leg did not get there; sending it again.", {}};
+        add_leg_motion(c, &choice);
+        return choice;
       }
-      actions.push_back(mcp("navigate_to", {{"waypoints", route}}));
-      continue;
-    }
-    // Going home past a no-fly zone needs nothing special: return_to_home plans its own detour
-    // on the vehicle and lands at home.
-    actions.push_back(a);
+      break;
+    case LegStatus::kFlying:
+    case LegStatus::kUnknown:
+      if (agent_turns_left > 1) return {"monitor_progress", "The current leg is not confirmed done; checking position.", {mcp("read_telemetry")}};
+      break;
   }
-  // Traffic reported close by the supervisor: negotiate separation first.
-  if (!c.dialogue->empty() && c.dialogue->back().speaker == "user" && c.dialogue->back().intent == "traffic_alert") {
-    actions.insert(actions.begin(), a2a("collision_avoidance", "uav_swarm_agent",
-                                        {{"intent", "hold position for the mission"}, {"request", "yield"}}));
-  }
+  // The last turn, the leg unfinished: come home rather than stay out.
+  add_return(&choice);
+  return choice;
+}
 
-  // Network adaptation: URLLC for control on a hard link; images stay on board until it is good.
+std::vector<nlohmann::json> ScriptedAgent::adapt_to_network(const AgentContext& c, std::vector<nlohmann::json> actions) {
+  // URLLC for control on a hard link; images stay on board until it is good.
   const bool hard = is_hard_network(c.net);
   const bool slow = number(c.net, "throughput_mbps", 1e9) < 5.0;
   std::vector<nlohmann::json> adapted;
@@ -242,15 +362,24 @@ AgentDecision ScriptedAgent::decide(const AgentContext& c) {
     adapted.push_back(a2a("handover_data", "ground_station", {{"items", nlohmann::json::array({"held_images"})}}));
     images_held_ = false;
   }
-  for (const auto& a : adapted) {
-    const std::string name = a.value("name", "");
-    if (name == "takeoff" || name == "set_waypoint" || name == "navigate_to" || name == "execute_maneuver") {
-      leg_turn_index_ = static_cast<int>(c.dialogue->size());
-    }
+  return adapted;
+}
+
+AgentDecision ScriptedAgent::decide(const AgentContext& c) {
+  if (!planned_) {
+    plan(c);
+    planned_ = true;
   }
-  d.intent = step.intent;
-  d.text = step.text;
-  d.actions = nlohmann::json(adapted);
+  Choice choice = next_choice(c);
+  // Traffic reported close by the supervisor: negotiate separation first.
+  if (!c.dialogue->empty() && c.dialogue->back().speaker == "user" && c.dialogue->back().intent == "traffic_alert") {
+    choice.actions.insert(choice.actions.begin(), a2a("collision_avoidance", "uav_swarm_agent",
+                                                      {{"intent", "hold position for the mission"}, {"request", "yield"}}));
+  }
+  AgentDecision d;
+  d.intent = choice.intent.empty() ? "resend_leg" : choice.intent;
+  d.text = choice.text;
+  d.actions = nlohmann::json(adapt_to_network(c, std::move(choice.actions)));
   return d;
 }
 

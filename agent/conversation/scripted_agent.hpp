@@ -1,18 +1,25 @@
 // The scripted agent: our reference policy, a competent operator written as rules. From the
-// mission it plans a short sequence of turns — pre-flight checks (telemetry, geofence,
-// weather, a route around no-fly zones from the ground station, a collision-avoidance
-// exchange with conflicting traffic), take-off and the objectives' legs (surveys as onboard
-// lawnmowers, image points, deliveries), return and landing — and adapts every turn to the
-// network: on a hard link it asks for URLLC for control and keeps images on board until the
-// link is good again, then hands them over. When the supervisor reports traffic close by, it
-// asks the swarm for separation (A2A collision_avoidance) before anything else. A capture at an
-// image point waits until telemetry shows the vehicle there (a supervisor's turn about a
-// degraded link can come while it is still on the way).
+// mission it plans one leg per objective (surveys as onboard lawnmowers, image points as a
+// flight to the point and a capture there, deliveries as a flight and a descent to drop
+// height), flies them in order after pre-flight checks (telemetry, geofence, weather, a route
+// around no-fly zones from the ground station — flown with the leg's own altitudes and
+// descent — and the swarm's traffic), then returns and lands. Each turn it judges the last leg
+// from evidence: telemetry read after the leg was sent (at rest in hold at the commanded
+// point and altitude, within the objective's own radius), the supervisor's acknowledgement of
+// the objective, or the supervisor's status request (it asks only once the vehicle has come to
+// rest). A capture needs that evidence; a leg whose command was lost, or that came to rest
+// elsewhere, is sent again; without evidence it checks telemetry while the turn budget has
+// turns to spare. Turn budgeting folds only what can be done at once: a capture with the next
+// leg (capture first, then move on), the last capture with the return, and — when the
+// budget is short — the pre-flight with the launch; never a leg with the capture at its end.
+// It adapts every turn to the network: on a hard link it asks for URLLC and keeps images on
+// board until the link is good again, then hands them over. When the supervisor reports
+// traffic close by, it asks the swarm for separation (A2A collision_avoidance) first.
+// Its state is a function of the dialogue it is shown, so replaying the dialogue rebuilds it.
 #pragma once
 
 #include <Eigen/Core>
 
-#include <deque>
 #include <string>
 #include <vector>
 
@@ -26,34 +33,55 @@ class ScriptedAgent final : public Agent {
   std::string name() const override { return "scripted"; }
   AgentDecision decide(const AgentContext& context) override;
 
+  // One objective's work: a motion (with its set-up) and, for an image point, a capture at its end.
+  struct Leg {
+    std::string objective_id;
+    std::string intent, text;
+    std::vector<nlohmann::json> actions;  // sensor set-up, then the motion
+    Eigen::Vector3d end_W_m = Eigen::Vector3d::Zero();  // where the motion ends (commanded)
+    bool ends_at_point = true;  // false: a pattern (survey) that ends wherever its last line ends
+    double radius_m = 0.0;      // the objective's own radius: how close counts
+    bool capture = false;
+    std::vector<nlohmann::json> capture_actions;
+    std::string capture_intent, capture_text;
+  };
+  // Where the last leg stands, from the evidence in the dialogue.
+  enum class LegStatus { kDone, kFlying, kLost, kUnknown };
+
  private:
-  struct Step {
-    std::string intent;
-    std::string text;
+  struct Choice {
+    std::string intent, text;
     std::vector<nlohmann::json> actions;
-    // A step done at a place (capturing an image point): it waits until the latest telemetry
-    // puts the vehicle within arrive_within_m of it (horizontally).
-    bool needs_arrival = false;
-    Eigen::Vector2d at = Eigen::Vector2d::Zero();
-    double arrive_within_m = 0.0;
   };
   void plan(const AgentContext& context);
-  std::vector<nlohmann::json> route_from_path_plan(const AgentContext& context) const;
-  bool still_flying_a_route(const AgentContext& context) const;
-  // True when telemetry read after the last motion leg was issued shows that leg finished (no
-  // leg issued: true). A supervisor's turn in between (a degraded link, a status request
-  // without telemetry) is not evidence that the vehicle got there.
-  bool last_leg_done(const AgentContext& context) const;
-  static bool arrived(const AgentContext& context, const Step& step);
+  Choice next_choice(const AgentContext& context);
+  Choice preflight_choice(const AgentContext& context);
+  Choice after_leg_done(const AgentContext& context, int agent_turns_left);
+  void add_leg_motion(const AgentContext& context, Choice* choice);
+  void add_return(Choice* choice);
+  // Agent turns the rest of the plan needs at least, from the current leg on (pre-flight
+  // excluded), with one check on the way for every leg sent right after a capture.
+  int turns_needed_after_preflight() const;
+  std::vector<nlohmann::json> route_for(const AgentContext& context, const nlohmann::json& motion);
+  std::vector<nlohmann::json> adapt_to_network(const AgentContext& context, std::vector<nlohmann::json> actions);
 
   bool planned_ = false;
-  std::deque<Step> steps_;
-  bool images_held_ = false;  // captures kept on board while the link was poor
-  bool detour_flown_ = false;  // the ground station's route has been used
-  int leg_turn_index_ = -1;   // dialogue index of the turn that issued the last motion leg
+  Choice preflight_;
+  std::vector<Leg> legs_;
+  std::size_t leg_ = 0;          // the current leg
+  bool preflight_done_ = false;
+  bool launched_ = false;
+  bool leg_sent_ = false;        // the current leg's motion has been sent
+  bool returned_ = false;        // return_to_home has been sent
+  bool images_held_ = false;     // captures kept on board while the link was poor
+  bool detour_flown_ = false;    // the ground station's route has been used
+  int leg_turn_index_ = -1;      // dialogue index of the turn that sent the current leg
 };
 
 // The SPEC §2 "hard" test on an n_t object.
 bool is_hard_network(const nlohmann::json& net);
+
+// The status of a leg sent in the turn at dialogue index leg_turn_index, from the turns after it.
+ScriptedAgent::LegStatus leg_status(const AgentContext& context, const ScriptedAgent::Leg& leg, int leg_turn_index);
 
 }  // namespace a3::agent
