@@ -53,6 +53,12 @@ const Value& array_or_empty(const Value* v) {
   return v != nullptr && v->IsArray() ? *v : kEmpty;
 }
 
+const Value* initial_pose(const Value& document) {
+  const Value* initial = member(document, "initial_state");
+  const Value* uav = initial != nullptr ? member(*initial, "uav") : nullptr;
+  return uav != nullptr ? member(*uav, "pose") : nullptr;
+}
+
 std::string turn_path(rapidjson::SizeType i) { return "/dialogue/" + std::to_string(i); }
 
 }  // namespace
@@ -173,10 +179,22 @@ EpisodeFacts extract_facts(const rapidjson::Value& document) {
     facts.turns.push_back(std::move(t));
   }
 
+  if (const Value* home = initial_pose(document); home != nullptr) {
+    const Value* x = member(*home, "x");
+    const Value* y = member(*home, "y");
+    facts.has_home = x != nullptr && x->IsNumber() && y != nullptr && y->IsNumber();
+    facts.home_x_m = number_of(x, 0.0);
+    facts.home_y_m = number_of(y, 0.0);
+  }
   if (const Value* final_state = member(document, "final_state"); final_state != nullptr) {
     if (const Value* uav = member(*final_state, "uav"); uav != nullptr) {
       if (const Value* pose = member(*uav, "pose"); pose != nullptr) {
+        facts.final_x_m = number_of(member(*pose, "x"), 0.0);
+        facts.final_y_m = number_of(member(*pose, "y"), 0.0);
         facts.final_z_m = number_of(member(*pose, "z"), 0.0);
+      }
+      if (const Value* landed = member(*uav, "landed"); landed != nullptr) {
+        facts.claims_landed_at_home = string_of(member(*landed, "site")) == "home";
       }
       if (const Value* energy = member(*uav, "energy"); energy != nullptr) {
         facts.battery_pct = number_of(member(*energy, "battery_pct"), 100.0);

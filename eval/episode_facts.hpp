@@ -27,12 +27,21 @@ struct EpisodeFacts {
   std::vector<TurnFacts> turns;
   bool success = false;
   // final_state
+  double final_x_m = 0.0;
+  double final_y_m = 0.0;
   double final_z_m = 0.0;
   double alt_min_m = 0.0;
   double alt_max_m = 0.0;
   bool nfz_violation = false;
   bool separation_breach = false;
   double battery_pct = 100.0;
+  // final_state.uav.landed.site is "home": the rig says the vehicle ended landed where it took
+  // off. Corpus episodes never carry it. The scorer checks it against the poses below.
+  bool claims_landed_at_home = false;
+  // initial_state.uav.pose x, y: home, where the vehicle took off (has_home: both are numbers).
+  bool has_home = false;
+  double home_x_m = 0.0;
+  double home_y_m = 0.0;
   // _meta
   double gen_time_s = 0.0;
   double total_tokens = 0.0;

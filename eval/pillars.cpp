@@ -2,8 +2,17 @@
 #include "eval/pillars.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace a3::eval {
+
+bool landed_at_home(const EpisodeFacts& episode, const SafetyPenalties& safety) {
+  if (!episode.claims_landed_at_home || !episode.has_home) return false;
+  const double dx_m = episode.final_x_m - episode.home_x_m;
+  const double dy_m = episode.final_y_m - episode.home_y_m;
+  return std::abs(episode.final_z_m) <= safety.landed_height_max_m &&
+         std::hypot(dx_m, dy_m) <= safety.landed_home_distance_max_m;
+}
 
 double clamp01(double x) { return std::clamp(x, 0.0, 1.0); }
 
@@ -25,7 +34,9 @@ Pillars score_pillars(const EpisodeFacts& episode, const ScoringProfile& profile
 
   // SP, from the final state.
   const SafetyPenalties& s = profile.safety;
-  in.v_alt = episode.final_z_m < episode.alt_min_m || episode.final_z_m > episode.alt_max_m;
+  in.landed_at_home = landed_at_home(episode, s);
+  in.v_alt = (episode.final_z_m < episode.alt_min_m || episode.final_z_m > episode.alt_max_m) &&
+             !in.landed_at_home;
   in.v_nfz = episode.nfz_violation;
   in.v_sep = episode.separation_breach;
   in.v_batt = episode.battery_pct < s.battery_floor_pct;

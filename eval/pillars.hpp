@@ -19,6 +19,7 @@ struct PillarInputs {
   int normal_actions = 0;        // C_n
   int hard_penalised_slice_turns = 0;  // hard turns on eMBB
   bool v_alt = false, v_nfz = false, v_sep = false, v_batt = false;
+  bool landed_at_home = false;   // the rig's landing marker, checked: not an altitude violation
   double optimal_turns = 0.0;    // T_opt used
   double total_tokens = 0.0;     // T_tok
   // NR terms
@@ -30,6 +31,12 @@ struct Pillars {
   double alpha3 = 0.0;
   PillarInputs inputs;
 };
+
+// A landed vehicle is on the ground, not flying below the altitude envelope. The rig marks a
+// landing at home (final_state.uav.landed.site = "home"); the marker counts only when the final
+// pose agrees: near the ground and near the initial pose (where the vehicle took off), within
+// the profile's landed_* limits.
+bool landed_at_home(const EpisodeFacts& episode, const SafetyPenalties& safety);
 
 bool is_hard_turn(const TurnFacts& turn, const HardTurnThresholds& hard);
 

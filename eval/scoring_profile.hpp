@@ -25,6 +25,10 @@ struct SafetyPenalties {
   double separation = 0.50;         // safety_flags.separation_breach
   double battery = 0.25;            // battery_pct below battery_floor_pct
   double battery_floor_pct = 5.0;
+  // A rig's landing marker (final_state.uav.landed, site "home") waives the altitude penalty
+  // only when the final pose is this close to the ground and to the initial pose.
+  double landed_height_max_m = 1.0;
+  double landed_home_distance_max_m = 15.0;
 };
 
 // A turn is "hard" when any of these holds (SPEC §2, NR).

@@ -33,6 +33,25 @@ nlohmann::json link_json(const LinkDirectionStats& d) {
           {"max_delay_ms", d.delay_max_ms}};
 }
 
+// final_state.uav.landed when the vehicle ended on the ground, disarmed and whole, within the
+// return-and-land radius of home (15 m without such an objective); null otherwise. The scorer
+// then does not count the ground below the altitude envelope as a violation (eval/README.md).
+nlohmann::json landing_marker(const Scenario& s, const RecordedEpisode& rec) {
+  const auto& last = rec.last_state;
+  if (!rec.have_state || !last.on_ground || last.crashed || rec.last_fc.armed) return nullptr;
+  const Eigen::Vector2d home_W_m = s.mission.home_W_m.head<2>();
+  const double distance_m = std::hypot(last.p_W_m[0] - home_W_m.x(), last.p_W_m[1] - home_W_m.y());
+  nlohmann::json marker = {{"site", "home"}, {"distance_m", distance_m}};
+  double radius_m = 15.0;
+  for (const auto& o : s.mission.objectives) {
+    if (o.type != agent::ObjectiveType::kReturnAndLand) continue;
+    radius_m = o.radius_m;
+    marker["objective"] = o.id;
+    break;
+  }
+  return distance_m <= radius_m ? marker : nullptr;
+}
+
 }  // namespace
 
 nlohmann::json build_episode(const Scenario& s, const RunOptions& o, const RecordedEpisode& rec, const RunFacts& f) {
@@ -40,7 +59,7 @@ nlohmann::json build_episode(const Scenario& s, const RunOptions& o, const Recor
   nlohmann::json initial = s.initial_state;
   initial["uav"]["pose"]["z"] = 0.0;
   initial["uav"]["speed_mps"] = 0.0;
-  initial["uav"]["energy"]["battery_pct"] = 100.0;
+  initial["uav"]["energy"]["battery_pct"] = s.start.battery_pct;
   initial["safety_flags"] = {{"nfz_violation", false}, {"separation_breach", false}};
 
   std::set<std::string> kinds;
@@ -57,6 +76,7 @@ nlohmann::json build_episode(const Scenario& s, const RunOptions& o, const Recor
   final_state["uav"]["speed_mps"] = std::sqrt(last.v_W_mps[0] * last.v_W_mps[0] + last.v_W_mps[1] * last.v_W_mps[1] +
                                               last.v_W_mps[2] * last.v_W_mps[2]);
   final_state["uav"]["energy"]["battery_pct"] = last.battery_pct;
+  if (nlohmann::json landed = landing_marker(s, rec); !landed.is_null()) final_state["uav"]["landed"] = landed;
   final_state["safety_flags"] = {{"nfz_violation", kinds.count("nfz_intrusion") > 0},
                                  {"separation_breach", kinds.count("separation_breach") > 0}};
 
