@@ -27,6 +27,18 @@ std::string read_point(const nlohmann::json& v, Eigen::Vector2d* xy, std::option
   return "";
 }
 
+// A goal [x, y, z] below or above the route's altitude z: the route keeps its altitude and ends
+// with the climb or descent to the goal's own z over the goal (a delivery's drop height), which
+// must pass the gate too. "" or why not.
+std::string end_at_goal_altitude(const SafetyGate& gate, const Eigen::Vector3d& start, const Eigen::Vector2d& goal_xy,
+                                 double route_z_m, const std::optional<double>& goal_z_m, PlannedPath* plan) {
+  if (!goal_z_m || std::abs(*goal_z_m - route_z_m) < 1e-9) return "";
+  plan->waypoints.emplace_back(goal_xy.x(), goal_xy.y(), *goal_z_m);
+  plan->length_m += std::abs(*goal_z_m - route_z_m);
+  const std::string why = gate.check_path(start, plan->waypoints);
+  return why.empty() ? "" : "the descent to the goal's altitude: " + why;
+}
+
 }  // namespace
 
 GroundStation::GroundStation(const SafetyGate& gate, PlannerConfig config) : gate_(gate), config_(config) {
@@ -64,11 +76,15 @@ PeerAnswer GroundStation::path_plan(const std::optional<Eigen::Vector3d>& positi
     z = std::min(std::max(gate_.config().return_altitude_m, air.min_altitude_m), air.max_altitude_m);
   }
   std::string why;
-  const auto plan = plan_path(gate_, start, goal_xy, z, config_, &why);
+  auto plan = plan_path(gate_, start, goal_xy, z, config_, &why);
   if (!plan) return error("failed", why);
+  if (auto why_not = end_at_goal_altitude(gate_, start, goal_xy, z, goal_z, &*plan); !why_not.empty()) {
+    return error("failed", why_not);
+  }
   nlohmann::json waypoints = nlohmann::json::array();
   for (const auto& p : plan->waypoints) waypoints.push_back(point_array(p));
-  const double direct = (Eigen::Vector3d(goal_xy.x(), goal_xy.y(), z) - start).norm();
+  const Eigen::Vector3d goal(goal_xy.x(), goal_xy.y(), goal_z.value_or(z));
+  const double direct = (goal - start).norm();
   PeerAnswer a;
   a.payload = {{"waypoints", waypoints},
                {"z", rounded(z, 1)},

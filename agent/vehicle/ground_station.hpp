@@ -2,8 +2,9 @@
 //   - path_plan {start?: [x, y(, z)], goal: [x, y(, z)], z?}: a route around the no-fly zones
 //     (path_planner.hpp) that passes the gate's geometric checks, at altitude z (else the
 //     goal's z, else the start's altitude kept inside the envelope — from the ground, the
-//     return altitude); start defaults to the vehicle's position. Status "failed" with the
-//     reason when there is none.
+//     return altitude); start defaults to the vehicle's position. A goal [x, y, z] with z given
+//     too keeps the route at z and ends with the climb or descent to the goal's own z over it.
+//     Status "failed" with the reason when there is none.
 //   - handover_data {items?: [id | {"id"} ...]}: acknowledges the images it receives; those
 //     still on board only (store_only captures, survey images) now cross the downlink, so the
 //     answer carries their bytes. Without items: every image not yet downlinked.
