@@ -75,6 +75,23 @@ uint64_t parse_seed(const std::string& item, const std::string& flag, const std:
 
 }  // namespace
 
+std::vector<std::string> expand_generated_missions(const std::vector<std::string>& scenarios, const std::string& flag) {
+  std::vector<std::string> out;
+  for (const auto& item : scenarios) {
+    if (item.rfind("gen:", 0) != 0) {
+      out.push_back(item);
+      continue;
+    }
+    const auto colon = item.find(':', 4);
+    const std::string count = item.substr(4, colon == std::string::npos ? std::string::npos : colon - 4);
+    const std::string knobs = colon == std::string::npos ? "" : item.substr(colon);
+    const bool range = count.find('-') != std::string::npos;
+    const std::vector<uint64_t> seeds = parse_seeds(range ? count : "1-" + count, flag + " " + item);
+    for (const uint64_t seed : seeds) out.push_back("gen:" + std::to_string(seed) + knobs);
+  }
+  return out;
+}
+
 std::vector<std::string> split_list(const std::string& text, const std::string& flag) {
   std::vector<std::string> items = raw_items(text, flag);
   require_distinct(items, flag, text);
@@ -131,7 +148,8 @@ std::vector<uint64_t> parse_seeds(const std::string& text, const std::string& fl
 SweepAxes make_axes(const std::string& scenarios, const std::string& agents, const std::string& think_times,
                     const std::string& slices, const std::string& seeds) {
   SweepAxes axes;
-  axes.scenarios = split_list(scenarios, "--scenarios");
+  axes.scenarios = expand_generated_missions(raw_items(scenarios, "--scenarios"), "--scenarios");
+  require_distinct(axes.scenarios, "--scenarios", scenarios);
   axes.agents = split_list(agents, "--agents");
   axes.think_times = split_think_times(think_times, "--think-times");
   axes.slices = split_list(slices, "--slices");

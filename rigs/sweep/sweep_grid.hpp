@@ -1,4 +1,4 @@
-// The grid of an `a3rig sweep`: scenarios × agents × think times × slices × seeds, parsed from
+// The grid of an `a3rig sweep`: scenarios (gen:N expanded) × agents × think times × slices × seeds, parsed from
 // comma lists, expanded in a fixed order (seed innermost) so that cell indices — and therefore
 // shards (`--shard i/N`: the cells whose index % N == i) — are the same on every machine.
 #pragma once
@@ -43,6 +43,10 @@ std::vector<std::string> split_list(const std::string& text, const std::string& 
 std::vector<std::string> split_think_times(const std::string& text, const std::string& flag);
 // "1,2,3", "1-5" or a mix ("1-3,10"); non-negative integers, distinct.
 std::vector<uint64_t> parse_seeds(const std::string& text, const std::string& flag);
+// Generated missions (rigs/core/scenario_generator_knobs.hpp) in a sweep: gen:N[:knobs] stands
+// for the N missions gen:1[:knobs] .. gen:N[:knobs], gen:A-B[:knobs] for seeds A..B; other
+// items pass unchanged. Expanded before the grid, so cell indices and shards stay fixed.
+std::vector<std::string> expand_generated_missions(const std::vector<std::string>& scenarios, const std::string& flag);
 // Checks the slices (eMBB, URLLC, mMTC) and the agents (scripted, llm, replay:<file>), and
 // that no two items of an axis map to the same folder name.
 SweepAxes make_axes(const std::string& scenarios, const std::string& agents, const std::string& think_times,
