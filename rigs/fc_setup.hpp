@@ -1,12 +1,10 @@
 // How the rig parameterises the flight controller from what it knows of the vehicle and the
 // scenario, kept here so that bridge/ never depends on dynamics/: the fc's vehicle section
 // (mass with payloads, arm length, rotor constants, inertia) from a dynamics airframe, and
-// the geofence and altitude envelope from an α³-Bench initial_state's `airspace`.
+// the geofence and altitude envelope from the parsed initial_state (rigs/core/initial_state.hpp).
 // Precedence when the fc node starts: FcParams defaults < airframe (+ payloads) < scenario
 // airspace < the parameter file given with --params.
 #pragma once
-
-#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <sstream>
@@ -16,8 +14,8 @@
 
 #include "bridge/fc/fc_params.hpp"
 #include "bridge/fc/geo.hpp"
-#include "common/json_file.hpp"
 #include "dynamics/vehicle_params.hpp"
+#include "rigs/core/initial_state.hpp"
 
 namespace a3::rigs {
 
@@ -35,39 +33,14 @@ inline bridge::FcVehicle fc_vehicle_from_airframe(const dynamics::VehicleParams&
   return out;
 }
 
-// The geofence of an initial_state: the first polygon of airspace.geofence (ENU metres) and
-// airspace.alt_bounds [min, max]. Absent parts stay unbounded. Throws common::InputError
-// naming the field.
-inline bridge::Geofence geofence_from_initial_state(const nlohmann::json& state, const std::string& where) {
-  if (!state.is_object() || !state.contains("airspace")) return {};
-  const auto& airspace = common::require_object(state, "airspace", where);
-  const std::string wa = where + "/airspace";
-  double min_m = -1e9, max_m = 1e9;
-  if (airspace.contains("alt_bounds")) {
-    const auto& b = common::require_array(airspace, "alt_bounds", wa);
-    if (b.size() != 2 || !b[0].is_number() || !b[1].is_number() || !(b[0].get<double>() < b[1].get<double>())) {
-      throw common::InputError(wa + "/alt_bounds: expected [min, max] with min < max");
-    }
-    min_m = b[0].get<double>();
-    max_m = b[1].get<double>();
-  }
-  std::vector<Eigen::Vector2d> polygon;
-  if (airspace.contains("geofence")) {
-    const auto& fences = common::require_array(airspace, "geofence", wa);
-    if (!fences.empty()) {
-      const std::string wf = wa + "/geofence/0";
-      const auto& points = common::require_array(fences[0], "points", wf);
-      for (std::size_t i = 0; i < points.size(); ++i) {
-        const auto& p = points[i];
-        if (!p.is_array() || p.size() < 2 || !p[0].is_number() || !p[1].is_number()) {
-          throw common::InputError(wf + "/points/" + std::to_string(i) + ": expected [x, y] in metres");
-        }
-        polygon.emplace_back(p[0].get<double>(), p[1].get<double>());
-      }
-      if (polygon.size() < 3) throw common::InputError(wf + "/points: a polygon needs at least 3 points");
-    }
-  }
-  return bridge::Geofence(std::move(polygon), min_m, max_m);
+// The fc's fence from the parsed initial_state: the geofence polygon (ENU metres; none:
+// unbounded horizontally) and the altitude envelope (airspace.alt_bounds narrowed by
+// policy.alt_bounds; none: unbounded).
+inline bridge::Geofence geofence_from(const InitialState& state) {
+  const AltitudeBounds envelope = state.envelope();
+  const double min_m = std::isfinite(envelope.min_m) ? envelope.min_m : -1e9;
+  const double max_m = std::isfinite(envelope.max_m) ? envelope.max_m : 1e9;
+  return bridge::Geofence(state.geofence, min_m, max_m);
 }
 
 // The home point (ENU origin) of the fc and bridge nodes: "LAT,LON,HEIGHT" in degrees and

@@ -15,6 +15,7 @@
 #include "dynamics/actuator_script_node.hpp"
 #include "dynamics/dynamics_node.hpp"
 #include "dynamics/scenario_setup.hpp"
+#include "rigs/core/initial_state.hpp"
 #include "rigs/cli/command_registry.hpp"
 #include "rigs/cli/flag_checks.hpp"
 #include "rigs/cli/signal_stop.hpp"
@@ -49,9 +50,7 @@ int run_dynamics(const DynamicsArgs& args) {
   config.seed = args.seed;
   config.turbulence.enabled = !args.no_turbulence;
   if (!args.scenario.empty()) {
-    const auto doc = common::load_json_file(args.scenario);
-    dynamics::apply_initial_state(dynamics::initial_state_of(doc, args.scenario), args.scenario,
-                                  args.on_ground, config);
+    dynamics::apply_flight_start(flight_start(load_initial_state_file(args.scenario)), args.on_ground, config);
   }
   if (args.wind_mps >= 0.0) config.mean_wind_W_mps = dynamics::wind_from_report(args.wind_mps, args.wind_dir_deg);
 

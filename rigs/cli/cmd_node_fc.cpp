@@ -17,7 +17,6 @@
 #include "bridge/nodes/fc_node.hpp"
 #include "common/json_file.hpp"
 #include "common/runtime.hpp"
-#include "dynamics/scenario_setup.hpp"
 #include "dynamics/vehicle_params.hpp"
 #include "rigs/cli/command_registry.hpp"
 #include "rigs/cli/flag_checks.hpp"
@@ -47,13 +46,9 @@ bridge::FcNodeConfig fc_config_from(const FcArgs& args) {
   dynamics::VehicleParams vehicle =
       args.airframe.empty() ? dynamics::default_vehicle_params() : dynamics::airframe_by_name_or_path(args.airframe);
   if (!args.scenario.empty()) {
-    const auto doc = common::load_json_file(args.scenario);
-    const auto& state = dynamics::initial_state_of(doc, args.scenario);
-    const auto& uav = common::require_object(state, "uav", args.scenario);
-    if (uav.contains("payloads")) {
-      vehicle = dynamics::with_payloads(vehicle, dynamics::payloads_from_json(uav["payloads"], args.scenario + "/uav/payloads"));
-    }
-    config.params.fence = geofence_from_initial_state(state, args.scenario);
+    const InitialState state = load_initial_state_file(args.scenario);
+    vehicle = dynamics::with_payloads(vehicle, state.payloads);
+    config.params.fence = geofence_from(state);
   }
   config.params.vehicle = fc_vehicle_from_airframe(vehicle);
   if (!args.params.empty()) {

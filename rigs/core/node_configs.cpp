@@ -32,24 +32,16 @@ linkemu::NetworkTrace trace_for(const NetworkScript& n, const std::filesystem::p
 
 RigConfigs make_rig_configs(const Scenario& s, const RunOptions& o) {
   RigConfigs c;
-  const std::string where = s.source;
 
   // Dynamics: the airframe with the scenario's payloads, wind, on the ground below the pose.
   c.dynamics.params = dynamics::airframe_by_name_or_path(s.airframe);
-  dynamics::apply_initial_state(s.initial_state, where + "/initial_state", true, c.dynamics);
+  dynamics::apply_flight_start(flight_start(s.start), true, c.dynamics);
   c.dynamics.turbulence.reference_altitude_m = std::max(10.0, s.mission.cruise_altitude_m);
   c.dynamics.integrator = dynamics::parse_integrator_kind(o.integrator);
   c.dynamics.publish_rate_hz = o.dynamics_rate_hz;
   c.dynamics.seed = o.seed;
+  // The payload within the airframe's lift was checked when the scenario loaded (scenario_checks).
   const dynamics::QuadrotorModel model(c.dynamics.params);
-  if (model.hover_throttle() > 0.85) {
-    char numbers[128];
-    std::snprintf(numbers, sizeof numbers, "%.1f kg of payload with a control margin (hover throttle %.2f, at most 0.85)",
-                  c.dynamics.params.payload_mass_kg, model.hover_throttle());
-    throw common::InputError(where + ": airframe '" + s.airframe + "' cannot carry " + numbers +
-                             (s.airframe == "heavy-lift" ? std::string("; no built-in airframe can: lighten the payload")
-                                                         : std::string("; use \"airframe\": \"heavy-lift\"")));
-  }
 
   // Bridge and flight controller.
   c.bridge.seed = o.seed;
@@ -58,9 +50,10 @@ RigConfigs make_rig_configs(const Scenario& s, const RunOptions& o) {
   c.fc.command_sources = {c.bridge.node_id};
   c.bridge.fc_node_id = c.fc.node_id;
   c.fc.params.vehicle = fc_vehicle_from_airframe(c.dynamics.params);
-  c.fc.params.fence = geofence_from_initial_state(s.initial_state, where + "/initial_state");
+  c.fc.params.fence = geofence_from(s.start);
 
-  // Link emulator.
+  // Link emulator: the scenario's network.link settings, then its slice, trace and outages.
+  c.link = s.network.link;
   c.link.seed = o.seed;
   c.link.initial_slice = linkemu::parse_slice(o.slice.empty() ? s.network.initial_slice : o.slice);
   if (!s.network.trace.empty()) c.link.trace = trace_for(s.network, o.shared_dir);
@@ -73,10 +66,10 @@ RigConfigs make_rig_configs(const Scenario& s, const RunOptions& o) {
   agent::ToolServerConfig& t = c.tool_server;
   t.airspace = s.airspace;
   t.home_W_m = s.mission.home_W_m;
-  t.env = s.initial_state.value("env", nlohmann::json::object());
-  const auto& uav = s.initial_state["uav"];
-  t.sensors = uav.value("sensors", nlohmann::json::object());
-  t.payloads = uav.value("payloads", nlohmann::json::array());
+  t.env = {{"weather", s.start.env.weather}, {"wind_mps", s.start.env.wind_mps}, {"wind_dir_deg", s.start.env.wind_dir_deg}};
+  if (s.start.env.gust_mps) t.env["gust_mps"] = *s.start.env.gust_mps;
+  t.sensors = s.start.sensors;
+  t.payloads = s.start.payload_descriptions;
   dynamics::RotorSpeeds hover;
   hover.fill(model.hover_speed_radps());
   t.energy.hover_power_w = model.electrical_power_W(hover);

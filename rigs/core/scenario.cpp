@@ -1,13 +1,19 @@
-// Scenario files.
+// Scenario files: schema, typed parse, semantic rules.
 #include "rigs/core/scenario.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
+#include "bridge/fc/fc_params.hpp"
 #include "common/json_file.hpp"
 #include "common/json_text.hpp"
 #include "rigs/core/builtin_scenarios.hpp"
+#include "rigs/core/scenario_airspace.hpp"
+#include "rigs/core/scenario_checks.hpp"
+#include "rigs/core/scenario_generator.hpp"
+#include "rigs/core/scenario_schema.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -19,27 +25,6 @@ using common::require_number;
 using common::require_object;
 using common::require_string;
 
-Eigen::Vector2d point2(const nlohmann::json& j, const std::string& where) {
-  if (!j.is_array() || j.size() < 2 || !j[0].is_number() || !j[1].is_number()) {
-    throw InputError(where + ": expected [x, y] in metres");
-  }
-  return {j[0].get<double>(), j[1].get<double>()};
-}
-
-Eigen::Vector3d point3(const nlohmann::json& j, const std::string& where) {
-  if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number()) {
-    throw InputError(where + ": expected [x, y, z] in metres");
-  }
-  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
-}
-
-common::Polygon2d polygon(const nlohmann::json& j, const std::string& where) {
-  if (!j.is_array() || j.size() < 3) throw InputError(where + ": a polygon needs at least 3 [x, y] points");
-  common::Polygon2d out;
-  for (std::size_t i = 0; i < j.size(); ++i) out.push_back(point2(j[i], where + "/" + std::to_string(i)));
-  return out;
-}
-
 agent::ObjectiveType objective_type(const std::string& s, const std::string& where) {
   if (s == "survey") return agent::ObjectiveType::kSurvey;
   if (s == "image_point") return agent::ObjectiveType::kImagePoint;
@@ -50,207 +35,192 @@ agent::ObjectiveType objective_type(const std::string& s, const std::string& whe
                    "' (survey, image_point, delivery, thermal_search, return_and_land)");
 }
 
-agent::Objective objective(const nlohmann::json& j, const std::string& w) {
-  agent::Objective o;
-  o.id = require_string(j, "id", w);
-  o.type = objective_type(require_string(j, "type", w), w + "/type");
-  o.description = j.value("description", "");
-  o.radius_m = number_or(j, "radius_m", o.radius_m, w);
-  o.altitude_m = number_or(j, "altitude_m", o.altitude_m, w);
-  o.sensor = j.value("sensor", o.type == agent::ObjectiveType::kThermalSearch ? "thermal" : "rgb");
+const nlohmann::json& field_or_null(const nlohmann::json& j, const char* key) {
+  static const nlohmann::json kNull;
+  return j.contains(key) ? j[key] : kNull;
+}
+
+void objective_place(const nlohmann::json& j, const std::string& w, agent::Objective& o) {
   switch (o.type) {
     case agent::ObjectiveType::kSurvey:
-      o.area = polygon(require_array(j, "area", w), w + "/area");
+      o.area = parse_polygon(require_array(j, "area", w), w + "/area");
       o.images_required = static_cast<int>(number_or(j, "images_required", o.images_required, w));
       if (o.images_required < 1) throw InputError(w + "/images_required: must be >= 1");
       break;
     case agent::ObjectiveType::kThermalSearch:
-      o.area = polygon(require_array(j, "area", w), w + "/area");
-      o.hidden_target = point2(j.contains("target") ? j["target"] : nlohmann::json(), w + "/target");
+      o.area = parse_polygon(require_array(j, "area", w), w + "/area");
+      o.hidden_target = parse_point2(field_or_null(j, "target"), w + "/target");
       if (!common::polygon_contains(o.area, o.hidden_target)) throw InputError(w + "/target: must lie inside the area");
       break;
     case agent::ObjectiveType::kImagePoint:
-      o.point = point2(j.contains("point") ? j["point"] : nlohmann::json(), w + "/point");
+      o.point = parse_point2(field_or_null(j, "point"), w + "/point");
       break;
     case agent::ObjectiveType::kDelivery:
-      o.point = point2(j.contains("point") ? j["point"] : nlohmann::json(), w + "/point");
+      o.point = parse_point2(field_or_null(j, "point"), w + "/point");
       o.drop_altitude_m = number_or(j, "drop_altitude_m", o.drop_altitude_m, w);
       break;
     case agent::ObjectiveType::kReturnAndLand:
       o.radius_m = number_or(j, "radius_m", 5.0, w);
       break;
   }
+}
+
+agent::Objective objective(const nlohmann::json& j, const std::string& w) {
+  agent::Objective o;
+  o.id = require_string(j, "id", w);
+  o.type = objective_type(require_string(j, "type", w), w + "/type");
+  o.description = j.contains("description") ? require_string(j, "description", w) : "";
+  o.radius_m = number_or(j, "radius_m", o.radius_m, w);
+  o.altitude_m = number_or(j, "altitude_m", o.altitude_m, w);
+  const std::string default_sensor = o.type == agent::ObjectiveType::kThermalSearch ? "thermal" : "rgb";
+  o.sensor = j.contains("sensor") ? require_string(j, "sensor", w) : default_sensor;
+  objective_place(j, w, o);
   if (!(o.radius_m > 0.0)) throw InputError(w + "/radius_m: must be > 0");
   if (!(o.altitude_m > 0.0)) throw InputError(w + "/altitude_m: must be > 0");
   return o;
 }
 
-agent::NoFlyZone no_fly_zone(const nlohmann::json& j, const std::string& w) {
-  agent::NoFlyZone z;
-  z.id = require_string(j, "id", w);
-  const std::string type = require_string(j, "type", w);
-  if (type == "cylinder") {
-    z.centre = point2(j.contains("center") ? j["center"] : nlohmann::json(), w + "/center");
-    z.radius_m = require_number(j, "radius_m", w);
-    if (!(z.radius_m > 0.0)) throw InputError(w + "/radius_m: must be > 0");
-  } else if (type == "polygon") {
-    z.polygon = polygon(require_array(j, "points", w), w + "/points");
-  } else {
-    throw InputError(w + "/type: '" + type + "' is not cylinder or polygon");
+agent::Mission mission(const nlohmann::json& m, const std::string& wm) {
+  agent::Mission out;
+  out.description = require_string(m, "description", wm);
+  out.cruise_altitude_m = number_or(m, "cruise_altitude_m", 60.0, wm);
+  out.cruise_speed_mps = number_or(m, "cruise_speed_mps", 8.0, wm);
+  out.time_limit_s = number_or(m, "time_limit_s", 900.0, wm);
+  const auto& objectives = require_array(m, "objectives", wm);
+  for (std::size_t i = 0; i < objectives.size(); ++i) {
+    out.objectives.push_back(objective(objectives[i], wm + "/objectives/" + std::to_string(i)));
   }
-  z.floor_m = number_or(j, "floor_m", 0.0, w);
-  z.ceiling_m = number_or(j, "ceiling_m", 1e9, w);
-  if (!(z.floor_m < z.ceiling_m)) throw InputError(w + ": floor_m must be below ceiling_m");
-  return z;
+  if (out.objectives.empty()) throw InputError(wm + "/objectives: a mission needs at least one objective");
+  return out;
 }
 
-agent::TrafficPlan traffic(const nlohmann::json& j, const std::string& w) {
-  agent::TrafficPlan t;
-  t.id = require_string(j, "id", w);
-  const auto& path = require_array(j, "path", w);
-  for (std::size_t i = 0; i < path.size(); ++i) {
-    const std::string wp = w + "/path/" + std::to_string(i);
-    agent::TrafficWaypoint p;
-    p.t_s = require_number(path[i], "t_s", wp);
-    p.p_W_m = point3(path[i].contains("p") ? path[i]["p"] : nlohmann::json(), wp + "/p");
-    if (!t.path.empty() && !(p.t_s > t.path.back().t_s)) throw InputError(wp + "/t_s: times must increase");
-    t.path.push_back(p);
+// network.link: the link emulator's settings, less what the scenario sets in its own fields.
+linkemu::LinkEmulatorConfig link_settings(const nlohmann::json& link, const std::string& wl,
+                                          const std::filesystem::path& base_dir) {
+  const std::pair<const char*, const char*> owned[] = {
+      {"seed", "the run's --seed"}, {"slice", "network/initial_slice"},
+      {"trace", "network/trace and trace_period_s"}, {"degradations", "network/degradations"}};
+  for (const auto& [key, owner] : owned) {
+    if (link.is_object() && link.contains(key)) throw InputError(wl + "/" + key + ": set by " + std::string(owner) + ", not here");
   }
-  if (t.path.empty()) throw InputError(w + "/path: needs at least one point");
-  t.min_separation_m = number_or(j, "min_separation_m", t.min_separation_m, w);
-  t.yields_when_asked = j.value("yields_when_asked", true);
-  t.yield_climb_m = number_or(j, "yield_climb_m", t.yield_climb_m, w);
-  t.conflict_deadline_s = number_or(j, "conflict_deadline_s", 0.0, w);
-  return t;
+  linkemu::LinkEmulatorConfig c = linkemu::parse_link_emulator_config(link, wl, base_dir);
+  try {
+    linkemu::validate(c);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(wl + ": " + e.what());
+  }
+  return c;
 }
 
-void airspace_from_initial_state(const nlohmann::json& state, const std::string& where, agent::Airspace& a) {
-  if (!state.contains("airspace")) return;
-  const auto& air = require_object(state, "airspace", where);
-  if (air.contains("alt_bounds")) {
-    const auto& b = require_array(air, "alt_bounds", where + "/airspace");
-    if (b.size() != 2 || !b[0].is_number() || !b[1].is_number() || !(b[0].get<double>() < b[1].get<double>())) {
-      throw InputError(where + "/airspace/alt_bounds: expected [min, max] with min < max");
-    }
-    a.min_altitude_m = b[0].get<double>();
-    a.max_altitude_m = b[1].get<double>();
+NetworkScript network(const nlohmann::json& n, const std::string& wn, const std::filesystem::path& base_dir) {
+  NetworkScript out;
+  out.initial_slice = n.contains("initial_slice") ? require_string(n, "initial_slice", wn) : out.initial_slice;
+  if (out.initial_slice != "URLLC" && out.initial_slice != "eMBB" && out.initial_slice != "mMTC") {
+    throw InputError(wn + "/initial_slice: '" + out.initial_slice + "' is not URLLC, eMBB or mMTC");
   }
-  if (air.contains("geofence")) {
-    const auto& fences = require_array(air, "geofence", where + "/airspace");
-    if (!fences.empty()) {
-      a.geofence = polygon(require_array(fences[0], "points", where + "/airspace/geofence/0"),
-                           where + "/airspace/geofence/0/points");
+  if (n.contains("degradations")) {
+    const auto& d = require_array(n, "degradations", wn);
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      const std::string wd = wn + "/degradations/" + std::to_string(i);
+      NetworkScript::Window w{require_number(d[i], "start_s", wd), require_number(d[i], "duration_s", wd)};
+      if (w.start_s < 0.0 || !(w.duration_s > 0.0)) throw InputError(wd + ": start_s >= 0 and duration_s > 0");
+      out.degradations.push_back(w);
     }
   }
+  if (n.contains("trace")) {
+    std::string t = require_string(n, "trace", wn);
+    if (t.rfind("alphabench:", 0) != 0 && std::filesystem::path(t).is_relative()) t = (base_dir / t).string();
+    out.trace = t;
+  }
+  out.trace_period_s = number_or(n, "trace_period_s", out.trace_period_s, wn);
+  if (!(out.trace_period_s > 0.0)) throw InputError(wn + "/trace_period_s: must be > 0");
+  if (n.contains("link")) out.link = link_settings(require_object(n, "link", wn), wn + "/link", base_dir);
+  return out;
+}
+
+// The scenario's airframe with its payloads. Throws naming /airframe.
+dynamics::VehicleParams loaded_airframe(const Scenario& s, const std::string& where) {
+  try {
+    return dynamics::with_payloads(dynamics::airframe_by_name_or_path(s.airframe), s.start.payloads);
+  } catch (const std::exception& e) {
+    throw InputError(where + ": /airframe: " + e.what());
+  }
+}
+
+void check_semantics(const Scenario& s, const std::string& where) {
+  throw_if_problems(scenario_problems(s, loaded_airframe(s, where), bridge::FcParams{}.limits.max_tilt_deg, where));
+}
+
+Scenario parse_scenario(const nlohmann::json& j, const std::string& where, const std::filesystem::path& base_dir) {
+  const std::string root = where + ": ";
+  Scenario s;
+  s.source = where;
+  s.name = require_string(j, "name", root);
+  s.description = j.contains("description") ? require_string(j, "description", root) : "";
+  s.airframe = j.contains("airframe") ? require_string(j, "airframe", root) : s.airframe;
+  s.initial_state = require_object(j, "initial_state", root);
+  s.start = parse_initial_state(s.initial_state, root + "/initial_state");
+  s.airspace = parse_airspace(s.start, field_or_null(j, "airspace"), root + "/airspace");
+  s.mission = mission(require_object(j, "mission", root), root + "/mission");
+  s.mission.name = s.name;
+  s.mission.home_W_m = {s.start.pose_W_m.x(), s.start.pose_W_m.y(), 0.0};
+  if (j.contains("network")) s.network = network(require_object(j, "network", root), root + "/network", base_dir);
+  return s;
+}
+
+std::filesystem::path alphabench_path(const std::string& spec, const std::filesystem::path& shared_dir) {
+  std::filesystem::path p = spec.substr(11);
+  if (p.is_relative()) p = shared_dir / "alphabench" / "eval_runs" / p;
+  return p;
+}
+
+// Where the default mission images: 250 m from home toward the geofence's centre (or east
+// without one), nearer home when that point lies outside the geofence.
+Eigen::Vector2d default_image_point(const agent::Airspace& airspace, const Eigen::Vector2d& home) {
+  if (airspace.geofence.size() < 3) return home + Eigen::Vector2d(250.0, 0.0);
+  Eigen::Vector2d c = Eigen::Vector2d::Zero();
+  for (const auto& p : airspace.geofence) c += p;
+  c /= static_cast<double>(airspace.geofence.size());
+  const Eigen::Vector2d dir = (c - home).norm() > 1.0 ? Eigen::Vector2d((c - home).normalized()) : Eigen::Vector2d(1, 0);
+  double distance_m = 250.0;
+  while (distance_m > 20.0 && !airspace.inside_geofence(home + distance_m * dir)) distance_m *= 0.5;
+  return home + distance_m * dir;
+}
+
+agent::Mission default_mission(const Scenario& s) {
+  agent::Mission m;
+  m.name = s.name;
+  m.home_W_m = {s.start.pose_W_m.x(), s.start.pose_W_m.y(), 0.0};
+  // Fly at the corpus altitude where the envelope allows, never above 120 m.
+  m.cruise_altitude_m = std::clamp(std::min(s.start.pose_W_m.z(), 120.0), s.airspace.min_altitude_m + 5.0,
+                                   std::max(s.airspace.min_altitude_m + 5.0, s.airspace.max_altitude_m - 5.0));
+  agent::Objective image;
+  image.id = "point-of-interest";
+  image.type = agent::ObjectiveType::kImagePoint;
+  image.point = default_image_point(s.airspace, m.home_W_m.head<2>());
+  image.radius_m = 20.0;
+  image.altitude_m = m.cruise_altitude_m;
+  image.description = "image the point of interest";
+  agent::Objective back;
+  back.id = "home";
+  back.type = agent::ObjectiveType::kReturnAndLand;
+  back.radius_m = 5.0;
+  m.objectives = {image, back};
+  char text[200];
+  std::snprintf(text, sizeof text, "Image the point of interest at (%.0f, %.0f) from %.0f m, then return and land.",
+                image.point.x(), image.point.y(), m.cruise_altitude_m);
+  m.description = text;
+  return m;
 }
 
 }  // namespace
 
-nlohmann::json Scenario::airspace_brief() const {
-  nlohmann::json zones = nlohmann::json::array();
-  for (const auto& z : airspace.no_fly_zones) {
-    nlohmann::json j = {{"id", z.id}, {"floor_m", z.floor_m}, {"ceiling_m", z.ceiling_m}};
-    if (z.polygon.empty()) {
-      j["type"] = "cylinder";
-      j["center"] = {z.centre.x(), z.centre.y()};
-      j["radius_m"] = z.radius_m;
-    } else {
-      j["type"] = "polygon";
-      j["points"] = nlohmann::json::array();
-      for (const auto& p : z.polygon) j["points"].push_back({p.x(), p.y()});
-    }
-    zones.push_back(j);
-  }
-  nlohmann::json peers = nlohmann::json::array();
-  for (const auto& t : airspace.traffic) {
-    peers.push_back({{"id", t.id}, {"min_separation_m", t.min_separation_m}, {"contact", "uav_swarm_agent"}});
-  }
-  nlohmann::json fence = nlohmann::json::array();
-  for (const auto& p : airspace.geofence) fence.push_back({p.x(), p.y()});
-  return {{"geofence", fence}, {"alt_bounds", {airspace.min_altitude_m, airspace.max_altitude_m}},
-          {"no_fly_zones", zones}, {"traffic", peers}};
-}
+nlohmann::json Scenario::airspace_brief() const { return rigs::airspace_brief(airspace); }
 
 Scenario scenario_from_json(const nlohmann::json& j, const std::string& where, const std::filesystem::path& base_dir) {
-  if (!j.is_object()) throw InputError(where + ": a scenario must be a JSON object");
-  Scenario s;
-  s.source = where;
-  s.name = require_string(j, "name", where);
-  s.description = j.value("description", "");
-  s.airframe = j.value("airframe", "iris");
-  s.initial_state = require_object(j, "initial_state", where);
-  const std::string wi = where + "/initial_state";
-  const auto& pose = require_object(require_object(s.initial_state, "uav", wi), "pose", wi + "/uav");
-  s.mission.home_W_m = {require_number(pose, "x", wi + "/uav/pose"), require_number(pose, "y", wi + "/uav/pose"), 0.0};
-  airspace_from_initial_state(s.initial_state, wi, s.airspace);
-
-  const auto& m = require_object(j, "mission", where);
-  const std::string wm = where + "/mission";
-  s.mission.name = s.name;
-  s.mission.description = require_string(m, "description", wm);
-  s.mission.cruise_altitude_m = number_or(m, "cruise_altitude_m", 60.0, wm);
-  s.mission.cruise_speed_mps = number_or(m, "cruise_speed_mps", 8.0, wm);
-  s.mission.time_limit_s = number_or(m, "time_limit_s", 900.0, wm);
-  if (!s.airspace.altitude_ok(s.mission.cruise_altitude_m)) {
-    throw InputError(wm + "/cruise_altitude_m: outside the airspace's alt_bounds");
-  }
-  const auto& objectives = require_array(m, "objectives", wm);
-  for (std::size_t i = 0; i < objectives.size(); ++i) {
-    s.mission.objectives.push_back(objective(objectives[i], wm + "/objectives/" + std::to_string(i)));
-  }
-  if (s.mission.objectives.empty()) throw InputError(wm + "/objectives: a mission needs at least one objective");
-
-  if (j.contains("airspace")) {
-    const auto& a = require_object(j, "airspace", where);
-    const std::string wa = where + "/airspace";
-    if (a.contains("no_fly_zones")) {
-      const auto& zones = require_array(a, "no_fly_zones", wa);
-      for (std::size_t i = 0; i < zones.size(); ++i) {
-        s.airspace.no_fly_zones.push_back(no_fly_zone(zones[i], wa + "/no_fly_zones/" + std::to_string(i)));
-      }
-    }
-    if (a.contains("traffic")) {
-      const auto& peers = require_array(a, "traffic", wa);
-      for (std::size_t i = 0; i < peers.size(); ++i) {
-        s.airspace.traffic.push_back(traffic(peers[i], wa + "/traffic/" + std::to_string(i)));
-      }
-    }
-  }
-  if (j.contains("network")) {
-    const auto& n = require_object(j, "network", where);
-    const std::string wn = where + "/network";
-    s.network.initial_slice = n.value("initial_slice", s.network.initial_slice);
-    if (s.network.initial_slice != "URLLC" && s.network.initial_slice != "eMBB" && s.network.initial_slice != "mMTC") {
-      throw InputError(wn + "/initial_slice: '" + s.network.initial_slice + "' is not URLLC, eMBB or mMTC");
-    }
-    if (n.contains("degradations")) {
-      const auto& d = require_array(n, "degradations", wn);
-      for (std::size_t i = 0; i < d.size(); ++i) {
-        const std::string wd = wn + "/degradations/" + std::to_string(i);
-        NetworkScript::Window w{require_number(d[i], "start_s", wd), require_number(d[i], "duration_s", wd)};
-        if (w.start_s < 0.0 || !(w.duration_s > 0.0)) throw InputError(wd + ": start_s >= 0 and duration_s > 0");
-        s.network.degradations.push_back(w);
-      }
-    }
-    if (n.contains("trace")) {
-      std::string t = require_string(n, "trace", wn);
-      if (t.rfind("alphabench:", 0) != 0 && std::filesystem::path(t).is_relative()) t = (base_dir / t).string();
-      s.network.trace = t;
-      s.network.trace_period_s = number_or(n, "trace_period_s", s.network.trace_period_s, wn);
-    }
-    if (n.contains("link")) s.network.link_overrides = require_object(n, "link", wn);
-  }
-  // Every point of the mission must be inside the geofence.
-  for (std::size_t i = 0; i < s.mission.objectives.size(); ++i) {
-    const auto& o = s.mission.objectives[i];
-    std::vector<Eigen::Vector2d> pts = o.area;
-    if (o.type == agent::ObjectiveType::kImagePoint || o.type == agent::ObjectiveType::kDelivery) pts.push_back(o.point);
-    for (const auto& p : pts) {
-      if (!s.airspace.inside_geofence(p)) {
-        throw InputError(wm + "/objectives/" + std::to_string(i) + ": a point lies outside the geofence");
-      }
-    }
-  }
+  throw_if_problems(scenario_schema_problems(j, where));
+  Scenario s = parse_scenario(j, where, base_dir);
+  check_semantics(s, where);
   return s;
 }
 
@@ -261,15 +231,14 @@ std::vector<std::string> builtin_scenario_names() {
 }
 
 Scenario load_scenario(const std::string& spec, const std::filesystem::path& shared_dir) {
+  if (is_generator_spec(spec)) return generate_scenario(spec);  // gen:SEED[:knobs] (scenario_generator.hpp)
   for (const auto& [name, text] : builtin_scenarios()) {
     if (name == spec) return scenario_from_json(common::parse_json_text(text, "scenario " + std::string(name)), "scenario " + std::string(name), ".");
   }
   if (spec.rfind("alphabench:", 0) == 0) {
-    std::filesystem::path p = spec.substr(11);
-    if (p.is_relative()) p = shared_dir / "alphabench" / "eval_runs" / p;
+    const std::filesystem::path p = alphabench_path(spec, shared_dir);
     const auto doc = common::load_json_file(p);
-    const auto& state = doc.contains("initial_state") ? require_object(doc, "initial_state", p.string()) : doc;
-    Scenario s = scenario_from_initial_state(state, p.string() + "/initial_state");
+    Scenario s = scenario_from_initial_state(initial_state_of(doc, p.string()), p.string());
     s.source = spec;
     return s;
   }
@@ -284,52 +253,21 @@ Scenario load_scenario(const std::string& spec, const std::filesystem::path& sha
 }
 
 Scenario scenario_from_initial_state(const nlohmann::json& state, const std::string& where) {
+  throw_if_problems(corpus_initial_state_problems(state, where));
   Scenario s;
   s.source = where;
-  s.initial_state = state;
-  airspace_from_initial_state(state, where, s.airspace);
-  const auto& pose = require_object(require_object(state, "uav", where), "pose", where + "/uav");
-  const Eigen::Vector2d home(require_number(pose, "x", where + "/uav/pose"), require_number(pose, "y", where + "/uav/pose"));
-  s.mission.home_W_m = {home.x(), home.y(), 0.0};
-  const double z = require_number(pose, "z", where + "/uav/pose");
   s.name = "alphabench";
   s.description = "a default mission for an α³-Bench initial state";
-  s.mission.name = s.name;
-  // Fly at the corpus altitude where the envelope allows, never above 120 m.
-  s.mission.cruise_altitude_m = std::clamp(std::min(z, 120.0), s.airspace.min_altitude_m + 5.0,
-                                           std::max(s.airspace.min_altitude_m + 5.0, s.airspace.max_altitude_m - 5.0));
+  s.initial_state = state;
+  s.start = parse_initial_state(state, where + ": /initial_state");
+  s.airspace = parse_airspace(s.start, nullptr, where);
   // Payloads beyond an Iris' lift need the heavy-lift airframe.
   double payload_kg = 0.0;
-  if (state["uav"].contains("payloads") && state["uav"]["payloads"].is_array()) {
-    for (const auto& p : state["uav"]["payloads"]) payload_kg += p.value("mass_kg", 0.0);
-  }
+  for (const auto& p : s.start.payloads) payload_kg += p.mass_kg;
   s.airframe = payload_kg > 0.5 ? "heavy-lift" : "iris";
-  // The image point: 250 m from home toward the geofence's centre (or east without one).
-  Eigen::Vector2d centre = home + Eigen::Vector2d(250.0, 0.0);
-  if (s.airspace.geofence.size() >= 3) {
-    Eigen::Vector2d c = Eigen::Vector2d::Zero();
-    for (const auto& p : s.airspace.geofence) c += p;
-    c /= static_cast<double>(s.airspace.geofence.size());
-    const Eigen::Vector2d dir = (c - home).norm() > 1.0 ? Eigen::Vector2d((c - home).normalized()) : Eigen::Vector2d(1, 0);
-    centre = home + 250.0 * dir;
-  }
-  agent::Objective image;
-  image.id = "point-of-interest";
-  image.type = agent::ObjectiveType::kImagePoint;
-  image.point = centre;
-  image.radius_m = 20.0;
-  image.altitude_m = s.mission.cruise_altitude_m;
-  image.description = "image the point of interest";
-  agent::Objective back;
-  back.id = "home";
-  back.type = agent::ObjectiveType::kReturnAndLand;
-  back.radius_m = 5.0;
-  s.mission.objectives = {image, back};
-  char text[200];
-  std::snprintf(text, sizeof text, "Image the point of interest at (%.0f, %.0f) from %.0f m, then return and land.",
-                centre.x(), centre.y(), s.mission.cruise_altitude_m);
-  s.mission.description = text;
+  s.mission = default_mission(s);
   s.network.initial_slice = "eMBB";
+  check_semantics(s, where);
   return s;
 }
 

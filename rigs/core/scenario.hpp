@@ -1,8 +1,11 @@
 // A scenario: an α³-Bench initial_state (the corpus format), a mission (the objectives that
 // decide success), airspace extras the corpus lacks (no-fly zones, other traffic), the
-// airframe, and the network script. Loaded from JSON (rigs/scenarios/*.json are built in) and
-// validated with errors that name the file and field; or derived from any initial_state of the
-// public corpus (`alphabench:<path>`).
+// airframe, and the network script. Loaded from JSON (rigs/scenarios/*.json are built in;
+// the format is docs/scenarios.md, its schema rigs/schema/scenario.schema.json): checked
+// against the schema, parsed once into typed sections, then checked for sense (home and
+// objectives inside the geofence and clear of no-fly zones, wind and payload within the
+// airframe's limits), every error naming the file and JSON path; or derived from any
+// initial_state of the public corpus (`alphabench:<path>`).
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -13,6 +16,8 @@
 
 #include "agent/airspace.hpp"
 #include "agent/mission/mission.hpp"
+#include "linkemu/link_emulator_config.hpp"
+#include "rigs/core/initial_state.hpp"
 
 namespace a3::rigs {
 
@@ -26,7 +31,9 @@ struct NetworkScript {
   std::vector<Window> degradations;
   std::string trace;       // a recorded trace to replay instead (file, or alphabench:<path>)
   double trace_period_s = 20.0;
-  nlohmann::json link_overrides = nlohmann::json::object();  // extra link emulator settings
+  // network.link: the link emulator's own settings (linkemu/link_emulator_config.hpp) with
+  // the scenario's slice, degradations and trace and the run's seed applied over them.
+  linkemu::LinkEmulatorConfig link;
 };
 
 struct Scenario {
@@ -34,7 +41,8 @@ struct Scenario {
   std::string description;
   std::string source;  // where it was loaded from
   std::string airframe = "iris";
-  nlohmann::json initial_state;
+  nlohmann::json initial_state;  // as given: the episode's initial_state is written from it
+  InitialState start;            // the same, parsed: what every node is configured from
   agent::Mission mission;
   agent::Airspace airspace;
   NetworkScript network;
@@ -44,7 +52,7 @@ struct Scenario {
   nlohmann::json airspace_brief() const;
 };
 
-// Throws common::InputError naming `where` and the field.
+// Throws common::InputError naming `where` and the JSON path, one line per problem.
 Scenario scenario_from_json(const nlohmann::json& j, const std::string& where,
                             const std::filesystem::path& base_dir);
 // A name of a built-in scenario, a JSON file, or alphabench:<path> (relative to the shared
@@ -53,7 +61,10 @@ Scenario load_scenario(const std::string& spec, const std::filesystem::path& sha
 std::vector<std::string> builtin_scenario_names();
 
 // A default mission for a corpus initial_state: take off from below its pose, image a point
-// 250 m away inside the geofence (away from the nearest edge), and return and land.
+// up to 250 m away toward the geofence's centre, and return and land. The state is checked
+// against the episode schema's `state` (the public corpus' shapes: a moving start, extra
+// payload fields) and then by the same parser and rules as a scenario file; `where` names
+// the document, errors name paths as in an episode (/initial_state/...).
 Scenario scenario_from_initial_state(const nlohmann::json& initial_state, const std::string& where);
 
 }  // namespace a3::rigs

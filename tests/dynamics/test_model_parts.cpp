@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <fstream>
 
 #include "common/json_file.hpp"
@@ -163,32 +164,45 @@ TEST(Battery, ChargeAndVoltage) {
   EXPECT_TRUE(r.empty);
 }
 
-TEST(ScenarioSetup, FromAPublicEpisodeInitialState) {
-  A3_REQUIRE_SHARED(file, "alphabench/eval_runs/openai/chatgpt-4o-latest/uav/sc-0000-ep-00.json");
-  const json doc = common::load_json_file(file);
+TEST(ScenarioSetup, AFlightStartSetsWindPayloadsPoseAndBattery) {
+  FlightStart start;
+  start.p_W_m = {100.0, 100.0, 300.0};
+  start.yaw_deg = 90.0;
+  start.wind_mps = 7.5;
+  start.wind_dir_deg = 240.0;
+  Payload a, b;
+  a.mass_kg = 3.2;
+  b.mass_kg = 1.8;
+  start.payloads = {a, b};
+  start.battery_pct = 60.0;
   DynamicsNodeConfig config;
   config.params = airframe_by_name_or_path("heavy-lift");
-  apply_initial_state(initial_state_of(doc, file.string()), file.string(), false, config);
-  // env: 7.5 m/s from 240°; pose (100, 100, 300) yaw 90°; payloads 3.2 kg + 1.8 kg.
+  apply_flight_start(start, false, config);
   EXPECT_NEAR(config.mean_wind_W_mps.norm(), 7.5, 1e-9);
   EXPECT_NEAR(config.mean_wind_W_mps.x(), 7.5 * std::sin(60 * M_PI / 180), 1e-9);  // toward 60°
   EXPECT_DOUBLE_EQ(config.params.total_mass_kg(), 6.3 + 5.0);
   EXPECT_DOUBLE_EQ(config.initial_state.p_W_m.z(), 300.0);
   EXPECT_NEAR(roll_pitch_yaw_rad(config.initial_state.q_WB).z(), M_PI / 2, 1e-12);
   EXPECT_GT(config.initial_state.rotor_speed_radps[0], 0.0);
+  // 60 % charge: 40 % of the pack already drawn.
+  const QuadrotorModel model(config.params);
+  EXPECT_NEAR(config.initial_state.energy_used_J, 0.4 * model.battery_energy_J(), 1e-6);
+  EXPECT_NEAR(read_battery(config.params.battery, model.battery_energy_J(), config.initial_state.energy_used_J, 0.0).percent,
+              60.0, 1e-9);
+
   DynamicsNodeConfig ground;
-  apply_initial_state(initial_state_of(doc, "x"), "x", true, ground);
+  apply_flight_start(start, true, ground);
   EXPECT_DOUBLE_EQ(ground.initial_state.p_W_m.z(), 0.0);
   EXPECT_DOUBLE_EQ(ground.initial_state.rotor_speed_radps[0], 0.0);
 
-  json bad = doc["initial_state"];
-  bad["env"]["wind_mps"] = "strong";
-  try {
-    apply_initial_state(bad, "scenario.json", false, config);
-    FAIL();
-  } catch (const common::InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("scenario.json/env/wind_mps: expected a number"), std::string::npos) << e.what();
+  for (const double bad_pct : {0.0, -5.0, 100.5}) {
+    FlightStart bad = start;
+    bad.battery_pct = bad_pct;
+    EXPECT_THROW(apply_flight_start(bad, true, config), std::invalid_argument) << bad_pct;
   }
+  FlightStart storm = start;
+  storm.wind_mps = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(apply_flight_start(storm, true, config), std::invalid_argument);
 }
 
 }  // namespace

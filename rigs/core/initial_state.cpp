@@ -1,0 +1,149 @@
+// initial_state JSON → InitialState.
+#include "rigs/core/initial_state.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "common/json_file.hpp"
+
+namespace a3::rigs {
+namespace {
+
+using common::InputError;
+
+double finite_number(const nlohmann::json& object, const std::string& key, const std::string& where) {
+  const double v = common::require_number(object, key, where);
+  if (!std::isfinite(v)) throw InputError(where + "/" + key + ": must be a finite number");
+  return v;
+}
+
+double finite_number_or(const nlohmann::json& object, const std::string& key, double fallback, const std::string& where) {
+  return object.contains(key) ? finite_number(object, key, where) : fallback;
+}
+
+Eigen::Vector2d point2(const nlohmann::json& j, const std::string& where) {
+  if (!j.is_array() || j.size() != 2 || !j[0].is_number() || !j[1].is_number() ||
+      !std::isfinite(j[0].get<double>()) || !std::isfinite(j[1].get<double>())) {
+    throw InputError(where + ": expected [x, y] in metres");
+  }
+  return {j[0].get<double>(), j[1].get<double>()};
+}
+
+AltitudeBounds bounds(const nlohmann::json& object, const std::string& where) {
+  const auto& b = common::require_array(object, "alt_bounds", where);
+  const std::string w = where + "/alt_bounds";
+  if (b.size() != 2 || !b[0].is_number() || !b[1].is_number()) throw InputError(w + ": expected [min, max] in metres");
+  const AltitudeBounds out{b[0].get<double>(), b[1].get<double>()};
+  if (!std::isfinite(out.min_m) || !std::isfinite(out.max_m) || !(out.min_m < out.max_m)) {
+    throw InputError(w + ": expected finite [min, max] with min < max");
+  }
+  return out;
+}
+
+InitialEnv env(const nlohmann::json& state, const std::string& where) {
+  const auto& e = common::require_object(state, "env", where);
+  const std::string w = where + "/env";
+  InitialEnv out;
+  out.weather = common::require_string(e, "weather", w);
+  out.wind_mps = finite_number(e, "wind_mps", w);
+  out.wind_dir_deg = finite_number(e, "wind_dir_deg", w);
+  if (out.wind_mps < 0.0) throw InputError(w + "/wind_mps: must be >= 0");
+  if (e.contains("gust_mps")) {
+    out.gust_mps = finite_number(e, "gust_mps", w);
+    if (*out.gust_mps < 0.0) throw InputError(w + "/gust_mps: must be >= 0");
+  }
+  return out;
+}
+
+common::Polygon2d geofence(const nlohmann::json& airspace, const std::string& where) {
+  common::Polygon2d polygon;
+  if (!airspace.contains("geofence")) return polygon;
+  const auto& fences = common::require_array(airspace, "geofence", where);
+  if (fences.empty()) return polygon;
+  const std::string w = where + "/geofence/0";
+  if (!fences[0].is_object()) throw InputError(w + ": expected an object {\"type\": \"polygon\", \"points\": [...]}");
+  const auto& points = common::require_array(fences[0], "points", w);
+  for (std::size_t i = 0; i < points.size(); ++i) polygon.push_back(point2(points[i], w + "/points/" + std::to_string(i)));
+  if (polygon.size() < 3) throw InputError(w + "/points: a polygon needs at least 3 points");
+  return polygon;
+}
+
+void parse_airspace(const nlohmann::json& state, const std::string& where, InitialState& out) {
+  const auto& a = common::require_object(state, "airspace", where);
+  const std::string w = where + "/airspace";
+  if (a.contains("alt_bounds")) out.alt_bounds = bounds(a, w);
+  out.geofence = geofence(a, w);
+  if (state.contains("policy")) {
+    const auto& p = common::require_object(state, "policy", where);
+    if (p.contains("alt_bounds")) out.policy_alt_bounds = bounds(p, where + "/policy");
+  }
+}
+
+void parse_uav(const nlohmann::json& state, const std::string& where, InitialState& out) {
+  const auto& uav = common::require_object(state, "uav", where);
+  const std::string w = where + "/uav";
+  const auto& pose = common::require_object(uav, "pose", w);
+  const std::string wp = w + "/pose";
+  out.pose_W_m = {finite_number(pose, "x", wp), finite_number(pose, "y", wp), finite_number(pose, "z", wp)};
+  out.yaw_deg = finite_number_or(pose, "yaw", 0.0, wp);
+  out.speed_mps = finite_number_or(uav, "speed_mps", 0.0, w);
+  const auto& energy = common::require_object(uav, "energy", w);
+  out.battery_pct = finite_number(energy, "battery_pct", w + "/energy");
+  if (!(out.battery_pct > 0.0 && out.battery_pct <= 100.0)) {
+    throw InputError(w + "/energy/battery_pct: must be in (0, 100]");
+  }
+  if (uav.contains("sensors")) {
+    const auto& sensors = common::require_object(uav, "sensors", w);
+    for (const auto& [name, health] : sensors.items()) {
+      if (!health.is_string()) throw InputError(w + "/sensors/" + name + ": expected a health string (\"ok\", \"offline\", ...)");
+      out.sensors[name] = health.get<std::string>();
+    }
+  }
+  if (uav.contains("payloads")) {
+    out.payload_descriptions = common::require_array(uav, "payloads", w);
+    out.payloads = dynamics::payloads_from_json(out.payload_descriptions, w + "/payloads");
+  }
+}
+
+}  // namespace
+
+InitialState parse_initial_state(const nlohmann::json& state, const std::string& where) {
+  if (!state.is_object()) throw InputError(where + ": an initial_state must be a JSON object");
+  InitialState out;
+  out.domain = state.contains("domain") ? common::require_string(state, "domain", where) : out.domain;
+  out.time_s = finite_number_or(state, "time_s", 0.0, where);
+  out.env = env(state, where);
+  parse_airspace(state, where, out);
+  parse_uav(state, where, out);
+  const AltitudeBounds e = out.envelope();
+  if (!(e.min_m < e.max_m)) throw InputError(where + "/policy/alt_bounds: does not overlap airspace/alt_bounds");
+  return out;
+}
+
+const nlohmann::json& initial_state_of(const nlohmann::json& document, const std::string& where) {
+  if (document.is_object() && document.contains("initial_state")) {
+    return common::require_object(document, "initial_state", where);
+  }
+  if (!document.is_object()) throw InputError(where + ": expected a JSON object");
+  return document;
+}
+
+InitialState load_initial_state_file(const std::string& path) {
+  const nlohmann::json doc = common::load_json_file(path);
+  const bool episode = doc.is_object() && doc.contains("initial_state");
+  return parse_initial_state(initial_state_of(doc, path), path + (episode ? ": /initial_state" : ": "));
+}
+
+dynamics::FlightStart flight_start(const InitialState& state) {
+  dynamics::FlightStart f;
+  f.p_W_m = state.pose_W_m;
+  f.yaw_deg = state.yaw_deg;
+  f.wind_mps = state.env.wind_mps;
+  f.wind_dir_deg = state.env.wind_dir_deg;
+  f.payloads = state.payloads;
+  f.battery_pct = state.battery_pct;
+  return f;
+}
+
+}  // namespace a3::rigs
