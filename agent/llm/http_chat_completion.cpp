@@ -11,11 +11,15 @@ namespace {
 
 using nlohmann::json;
 
+// A token count as the endpoint reported it; negative, non-numeric or absurd values (beyond
+// 2^53, where a count stops being exact in the episode's JSON) count as 0.
 int64_t token_count(const json& usage, const char* key) {
+  constexpr double kMaxTokens = 9007199254740992.0;  // 2^53
   const auto it = usage.find(key);
   if (it == usage.end() || !it->is_number()) return 0;
-  if (it->is_number_integer() || it->is_number_unsigned()) return it->get<int64_t>();
-  return static_cast<int64_t>(it->get<double>());
+  const double count = it->get<double>();
+  if (!(count >= 0.0 && count <= kMaxTokens)) return 0;
+  return static_cast<int64_t>(count);
 }
 
 // content as a string, or as an array of text parts ({"type": "text", "text": ...} or strings).

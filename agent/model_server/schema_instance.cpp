@@ -7,7 +7,9 @@
 #include <valijson/validation_results.hpp>
 #include <valijson/validator.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 
 namespace a3::agent::model_server {
@@ -15,6 +17,13 @@ namespace {
 
 using nlohmann::json;
 constexpr int kMaxDepth = 16;  // recursive schemas ($ref to itself) stop here
+// A tool schema comes from the client: an instance holds at most this many array items and
+// string characters, whatever minItems / minLength ask (the instance then fails validation,
+// which is reported, instead of exhausting memory).
+constexpr std::size_t kMaxInstanceItems = 64;
+constexpr std::size_t kMaxInstanceStringBytes = 4096;
+// Integers stay where a double still counts exactly.
+constexpr double kMaxInstanceInteger = 9007199254740992.0;  // 2^53
 
 json instance(const json& schema, const json& root, int depth);
 
@@ -26,6 +35,18 @@ const json* resolve_ref(const std::string& ref, const json& root) {
   } catch (const json::exception&) {
     return nullptr;
   }
+}
+
+// A count keyword (minItems, minLength) capped at `cap`; 0 when absent or not a count.
+std::size_t count_keyword(const json& s, const char* key, std::size_t cap) {
+  const auto it = s.find(key);
+  if (it == s.end() || !it->is_number_unsigned()) return 0;
+  return static_cast<std::size_t>(std::min<uint64_t>(it->get<uint64_t>(), cap));
+}
+
+std::string string_keyword(const json& s, const char* key) {
+  const auto it = s.find(key);
+  return it != s.end() && it->is_string() ? it->get<std::string>() : std::string();
 }
 
 std::string type_of(const json& schema) {
@@ -75,7 +96,7 @@ json object_instance(const json& s, const json& root, int depth) {
 
 json array_instance(const json& s, const json& root, int depth) {
   json out = json::array();
-  const std::size_t n = s.value("minItems", 0u);
+  const std::size_t n = count_keyword(s, "minItems", kMaxInstanceItems);
   const json items = s.contains("items") && s["items"].is_object() ? s["items"] : json::object();
   for (std::size_t i = 0; i < n; ++i) out.push_back(instance(items, root, depth + 1));
   return out;
@@ -83,10 +104,10 @@ json array_instance(const json& s, const json& root, int depth) {
 
 json string_instance(const json& s) {
   std::string text = "a3rig";
-  const std::size_t min_length = s.value("minLength", 0u);
+  const std::size_t min_length = count_keyword(s, "minLength", kMaxInstanceStringBytes);
   if (text.size() < min_length) text.append(min_length - text.size(), 'x');
   if (s.contains("maxLength") && s["maxLength"].is_number_unsigned()) text.resize(std::min(text.size(), s["maxLength"].get<std::size_t>()));
-  const std::string format = s.value("format", "");
+  const std::string format = string_keyword(s, "format");
   if (format == "date-time") return "2026-01-01T00:00:00Z";
   if (format == "date") return "2026-01-01";
   if (format == "email") return "a3rig@example.com";
@@ -99,12 +120,15 @@ json merged_all_of(const json& s, const json& root) {
   json merged = s;
   merged.erase("allOf");
   for (const auto& branch : s["allOf"]) {
-    const json* b = branch.contains("$ref") ? resolve_ref(branch["$ref"].get<std::string>(), root) : &branch;
+    const std::string ref = branch.is_object() ? string_keyword(branch, "$ref") : std::string();
+    const json* b = ref.empty() ? &branch : resolve_ref(ref, root);
     if (b == nullptr || !b->is_object()) continue;
     for (const auto& [key, value] : b->items()) {
-      if (key == "properties" && merged.contains("properties")) {
+      if (key == "properties" && merged.contains("properties") && merged["properties"].is_object() &&
+          value.is_object()) {
         merged["properties"].update(value);
-      } else if (key == "required" && merged.contains("required")) {
+      } else if (key == "required" && merged.contains("required") && merged["required"].is_array() &&
+                 value.is_array()) {
         for (const auto& r : value) merged["required"].push_back(r);
       } else {
         merged[key] = value;
@@ -131,7 +155,10 @@ json instance(const json& schema, const json& root, int depth) {
   if (type == "object") return object_instance(schema, root, depth);
   if (type == "array") return array_instance(schema, root, depth);
   if (type == "string") return string_instance(schema);
-  if (type == "integer") return static_cast<int64_t>(number_in_bounds(schema, true));
+  if (type == "integer") {
+    return static_cast<int64_t>(
+        std::clamp(number_in_bounds(schema, true), -kMaxInstanceInteger, kMaxInstanceInteger));
+  }
   if (type == "number") return number_in_bounds(schema, false);
   if (type == "boolean") return false;
   if (type == "null") return nullptr;

@@ -55,6 +55,19 @@ TEST(ChatResponse, UsageWithoutTotalIsSummedAndCostIsOptional) {
   EXPECT_FALSE(r.usage.cost_usd.has_value());
 }
 
+// Fuzz finding (llm_reply): a count of 7.8e99 was cast to int64 (undefined behaviour).
+TEST(ChatResponse, AbsurdTokenCountsCountAsZero) {
+  ChatResponse r;
+  std::string error;
+  const std::string body =
+      R"({"choices":[{"message":{"content":"hi"}}],"usage":{"prompt_tokens":7.8e99,)"
+      R"("completion_tokens":-5,"total_tokens":18446744073709551615}})";
+  ASSERT_TRUE(parse_chat_response(body, "u", r, error)) << error;
+  EXPECT_EQ(r.usage.prompt_tokens, 0);
+  EXPECT_EQ(r.usage.completion_tokens, 0);
+  EXPECT_EQ(r.usage.total_tokens, 0);
+}
+
 TEST(ChatResponse, WrongShapesAreNamed) {
   ChatResponse r;
   std::string error;

@@ -98,4 +98,20 @@ TEST(ReplyShaping, FormatsAndToolChoice) {
   EXPECT_EQ(none.finish_reason, "stop");
 }
 
+// Fuzz finding (model_request): a tool schema is the client's; keywords of the wrong type or
+// absurd size must not throw, allocate without bound, or overflow.
+TEST(SchemaInstance, HostileKeywordsGiveAnInstanceWithoutThrowing) {
+  const json schema = json::parse(R"({"type":"object","required":["s","n","a","m"],"properties":{
+      "s":{"type":"string","minLength":"#/$defs","format":7},
+      "n":{"type":"integer","minimum":5e37,"multipleOf":3},
+      "a":{"type":"array","minItems":4000000000,"items":{"type":"string","minLength":99999999}},
+      "m":{"allOf":[{"$ref":5},{"properties":[1]},{"required":"x"}],"properties":{},"required":[]}}})");
+  json value;
+  ASSERT_NO_THROW(value = ms::instance_of_schema(schema));
+  EXPECT_EQ(value["s"], "a3rig");
+  EXPECT_TRUE(value["n"].is_number_integer());
+  EXPECT_LE(value["a"].size(), 64u);
+  EXPECT_LE(value["a"][0].get<std::string>().size(), 4096u);
+}
+
 }  // namespace
