@@ -62,6 +62,13 @@ FcParams fc_params_from_json(const nlohmann::json& j, const std::string& where, 
     read(*l, "brake_accel_mps2", w, p.limits.brake_accel_mps2, true);
     read(*l, "default_speed_mps", w, p.limits.default_speed_mps, true);
   }
+  if (const auto* g = section(j, "goto", where)) {
+    const std::string w = where + "/goto";
+    read(*g, "cross_track_p", w, p.go_to.cross_track_p, false);
+    read(*g, "cross_track_i", w, p.go_to.cross_track_i, false);
+    read(*g, "max_cross_track_speed_mps", w, p.go_to.max_cross_track_speed_mps, true);
+    read(*g, "along_track_accel_mps2", w, p.go_to.along_track_accel_mps2, true);
+  }
   if (const auto* f = section(j, "failsafe", where)) {
     const std::string w = where + "/failsafe";
     read(*f, "link_loss_hold_s", w, p.failsafe.link_loss_hold_s, true);

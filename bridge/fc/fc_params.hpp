@@ -54,10 +54,21 @@ struct FcFailsafeParams {
   double return_altitude_m = 30.0;  // minimum altitude of the return leg
 };
 
+// Go-to as path following (path_following.hpp): the velocity setpoint's correction toward the
+// line from the leg's start to its target. cross_track_p = 0 turns path following off: the
+// go-to then points its velocity at the target, as before issue 15.
+struct FcGotoParams {
+  double cross_track_p = 1.0;              // 1/s: velocity toward the line per metre off it
+  double cross_track_i = 0.25;             // 1/s²: per metre-second off it (steady wind)
+  double max_cross_track_speed_mps = 3.0;  // cap of the correction (P + I), m/s
+  double along_track_accel_mps2 = 2.0;     // how fast the along-track speed setpoint may grow
+};
+
 struct FcParams {
   FcVehicle vehicle;
   FcGains gains;
   FcLimits limits;
+  FcGotoParams go_to;
   FcFailsafeParams failsafe;
   Geofence fence;               // from the scenario; unbounded by default
   double control_rate_hz = 250.0;

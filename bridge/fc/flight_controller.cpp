@@ -71,6 +71,7 @@ FlightController::FlightController(FcParams params, EstimatorNoise noise)
     : params_(std::move(params)),
       estimator_(noise),
       position_(params_),
+      path_(params_),
       attitude_(params_),
       speed_mps_(params_.limits.default_speed_mps) {}
 
@@ -134,6 +135,20 @@ std::string FlightController::target_problem(const Eigen::Vector3d& t, FcRefusal
     return text;
   }
   return "";
+}
+
+// A go-to that replaces one in progress continues from its target (legs of a route chain);
+// from hold it starts at the hold point; otherwise where the vehicle is.
+Eigen::Vector3d FlightController::goto_leg_start(const EstimatedState& e) const {
+  if (status_.mode == FcMode::kGoto) return target_W_m_;
+  if (status_.mode == FcMode::kHold) return hold_W_m_;
+  return e.p_W_m;
+}
+
+Eigen::Vector3d FlightController::goto_velocity_setpoint(const Eigen::Vector3d& p_W, double dt_s) {
+  Eigen::Vector3d v = position_.velocity_setpoint(p_W, target_W_m_, speed_mps_);
+  if (path_.following()) v.head<2>() = path_.velocity_setpoint_mps(p_W.head<2>(), speed_mps_, dt_s);
+  return v;
 }
 
 FlightCommandResult FlightController::on_command(const FlightCommand& c, double t_s) {
@@ -201,6 +216,7 @@ FlightCommandResult FlightController::on_command(const FlightCommand& c, double 
       if (!problem.empty()) return refuse(c, why, problem);
       if (c.speed_limit_mps > 0.0) speed_mps_ = std::min(c.speed_limit_mps, params_.limits.max_horizontal_speed_mps);
       if (std::isfinite(c.yaw_deg)) yaw_sp_rad_ = c.yaw_deg * M_PI / 180.0;
+      path_.start_leg(goto_leg_start(e).head<2>(), c.target_W_m.head<2>(), e.v_W_mps.head<2>());
       target_W_m_ = c.target_W_m;
       enter(FcMode::kGoto);
       return accept(c);
@@ -316,7 +332,7 @@ FcOutput FlightController::step(double t_s) {
       v_sp = position_.velocity_setpoint(e.p_W_m, hold_W_m_, speed_mps_);
       break;
     case FcMode::kGoto:
-      v_sp = position_.velocity_setpoint(e.p_W_m, target_W_m_, speed_mps_);
+      v_sp = goto_velocity_setpoint(e.p_W_m, dt);
       if ((e.p_W_m - target_W_m_).norm() < kArrivedDistance_m && e.v_W_mps.norm() < kArrivedSpeed_mps) {
         hold_W_m_ = target_W_m_;
         enter(FcMode::kHold);

@@ -1,5 +1,5 @@
 // The flight controller's logic, independent of how sensors and commands reach it: modes
-// (disarmed, takeoff, hold, go-to, land, return-to-home, emergency), command checks, failsafes
+// (disarmed, takeoff, hold, go-to as path following, land, return-to-home, emergency), command checks, failsafes
 // (command-link loss: hold, then return; low battery: return, then land; geofence and altitude
 // envelope: refuse targets outside, brake before an edge, return if pushed outside), and the
 // cascaded control loops down to four rotor throttles. The fc node wires it to CAN.
@@ -13,6 +13,7 @@
 
 #include "bridge/fc/attitude_control.hpp"
 #include "bridge/fc/fc_params.hpp"
+#include "bridge/fc/path_following.hpp"
 #include "bridge/fc/position_control.hpp"
 #include "bridge/fc/state_estimator.hpp"
 
@@ -82,6 +83,8 @@ class FlightController {
   FcOutput step(double t_s);
   const FlightStatus& status() const { return status_; }
   const Eigen::Vector3d& home_W_m() const { return home_W_m_; }
+  // The current (or last) go-to leg.
+  const GotoPathFollower& goto_path() const { return path_; }
 
  private:
   FlightCommandResult refuse(const FlightCommand& c, FcRefusal why, const std::string& detail);
@@ -91,10 +94,13 @@ class FlightController {
   void check_failsafes(double t_s, const EstimatedState& e);
   Eigen::Vector3d brake_before_fence(const Eigen::Vector3d& p_W, const Eigen::Vector3d& v_sp) const;
   std::string target_problem(const Eigen::Vector3d& target, FcRefusal* why) const;
+  Eigen::Vector3d goto_leg_start(const EstimatedState& e) const;
+  Eigen::Vector3d goto_velocity_setpoint(const Eigen::Vector3d& p_W, double dt_s);
 
   FcParams params_;
   StateEstimator estimator_;
   PositionController position_;
+  GotoPathFollower path_;
   AttitudeController attitude_;
   FlightStatus status_;
   double last_step_t_s_ = -1.0;

@@ -31,10 +31,11 @@ class DirectLoop {
   static constexpr double kTick_s = 0.004;
   static constexpr double kHomeMsl_m = 488.0;
 
+  // turbulence: Dryden gusts on top of mean_wind (off: a steady wind).
   DirectLoop(const dynamics::VehicleParams& vehicle, bridge::FcParams fc_params,
-             const Eigen::Vector3d& mean_wind = Eigen::Vector3d::Zero(), uint64_t seed = 1)
+             const Eigen::Vector3d& mean_wind = Eigen::Vector3d::Zero(), uint64_t seed = 1, bool turbulence = true)
       : model_(vehicle),
-        wind_(mean_wind, dynamics::TurbulenceParams{true, 10.0, 0.05}, seed),
+        wind_(mean_wind, dynamics::TurbulenceParams{turbulence, 10.0, 0.05}, seed),
         integrator_(dynamics::make_integrator(dynamics::IntegratorKind::kCvode, model_, wind_)),
         fc_(std::move(fc_params)),
         sensors_(bridge::SensorNoise{}, seed) {
