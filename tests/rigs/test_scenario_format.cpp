@@ -50,6 +50,15 @@ TEST(ScenarioFormat, EveryBuiltInScenarioPassesTheSchemaAndTheRules) {
   }
 }
 
+TEST(ScenarioFormat, EveryTestDataScenarioPassesTheSchemaAndTheRules) {
+  const std::filesystem::path dir = std::filesystem::path(A3_SOURCE_DIR) / "tests" / "data" / "scenarios";
+  if (!std::filesystem::exists(dir)) GTEST_SKIP() << dir << " is absent";
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().extension() != ".json") continue;
+    EXPECT_NO_THROW((void)load_scenario(entry.path().string(), ".")) << entry.path();
+  }
+}
+
 TEST(ScenarioFormat, HomeOutsideTheGeofenceIsRefused) {
   json doc = nfz_detour();
   doc["initial_state"]["uav"]["pose"]["x"] = -50.0;
