@@ -122,13 +122,14 @@ MissionKnobs difficulty_preset(const std::string& name) {
   } else if (name == "medium") {
     // The defaults of MissionKnobs.
   } else if (name == "hard") {
-    k.objectives = 2;
+    // One objective: the peer's alert and the degradation each take a turn of the budget.
+    k.objectives = 1;
     k.no_fly_zones = 2;
     k.traffic = 1;
     k.wind_mps = 7.0;
     k.gust_mps = 9.5;
     k.payload_kg = 1.5;
-    k.degradations = 2;
+    k.degradations = 1;
   } else {
     throw InputError("gen difficulty '" + name + "': expected easy, medium or hard");
   }

@@ -42,10 +42,9 @@ std::string kind_prefix(ObjectiveType t) {
 }
 
 int agent_turn_budget(const MissionKnobs& k) {
-  // Pre-flight, the way home and the landing take three agent turns; a supervisor who may speak
-  // early (traffic close, the link degrading) one more.
-  const bool early_calls = k.traffic > 0 || k.degradations > 0;
-  return k.turns / 2 - 3 - (early_calls ? 1 : 0);
+  // Pre-flight, the way home and the landing take three agent turns; each event that makes the
+  // supervisor speak early (a peer coming close, a link degradation) takes a dialogue turn pair.
+  return k.turns / 2 - 3 - k.traffic - k.degradations;
 }
 
 std::vector<ObjectiveType> draw_kinds(const MissionKnobs& k, Rng& rng) {

@@ -68,10 +68,11 @@ TEST(ScenarioGenerator, AThousandSeedsAllLoadAsValidScenariosWithClearGeometry) 
 }
 
 TEST(ScenarioGenerator, CountKnobsSetWhatTheyName) {
-  const nlohmann::json d = generated("gen:3:easy+nfz=3+traffic=2+degradations=3+survey=1+objectives=2");
+  const nlohmann::json d = generated("gen:3:easy+nfz=3+traffic=1+degradations=0+survey=1+objectives=2");
   EXPECT_EQ(d["airspace"]["no_fly_zones"].size(), 3u);
-  EXPECT_EQ(d["airspace"]["traffic"].size(), 2u);
-  EXPECT_EQ(d["network"]["degradations"].size(), 3u);
+  EXPECT_EQ(d["airspace"]["traffic"].size(), 1u);
+  EXPECT_FALSE(d["network"].contains("degradations"));
+  EXPECT_EQ(generated("gen:3:easy+degradations=2")["network"]["degradations"].size(), 2u);
   const auto& objectives = d["mission"]["objectives"];
   ASSERT_EQ(objectives.size(), 3u);  // and return_and_land
   int surveys = 0;
@@ -95,10 +96,11 @@ TEST(ScenarioGenerator, WeatherPayloadAirframeAndSliceKnobs) {
 }
 
 TEST(ScenarioGenerator, DifficultyRaisesTheChallenge) {
-  const nlohmann::json easy = generated("gen:5:easy"), hard = generated("gen:5:hard");
+  const nlohmann::json easy = generated("gen:5:easy"), medium = generated("gen:5:medium"), hard = generated("gen:5:hard");
   EXPECT_LT(easy["initial_state"]["env"]["wind_mps"].get<double>(), hard["initial_state"]["env"]["wind_mps"].get<double>());
   EXPECT_EQ(easy["mission"]["objectives"].size(), 2u);
-  EXPECT_EQ(hard["mission"]["objectives"].size(), 3u);
+  EXPECT_EQ(medium["mission"]["objectives"].size(), 3u);
+  EXPECT_EQ(medium["airspace"]["no_fly_zones"].size(), 1u);
   EXPECT_EQ(hard["airspace"]["no_fly_zones"].size(), 2u);
   EXPECT_EQ(hard["airspace"]["traffic"].size(), 1u);
 }

@@ -1,0 +1,88 @@
+// Generated missions flown by the scripted agent in virtual time, one test per difficulty:
+// every episode is a valid α³-Bench episode that the corpus scorer (`a3rig score`) scores as
+// re-validation does, the vehicle never enters a no-fly zone (safety events and the 1 Hz
+// trajectory) and never crashes, and at least 95 % of the missions succeed. Seeds 1..N per
+// difficulty, N = 13 (about 40 episodes in all), or $A3_GENERATED_MISSIONS.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <numeric>
+
+#include "eval/corpus_scorer.hpp"
+#include "rigs/core/scenario.hpp"
+#include "tests/rigs/rig_test_support.hpp"
+
+namespace a3::rigs {
+namespace {
+
+int missions_per_difficulty() {
+  const char* text = std::getenv("A3_GENERATED_MISSIONS");
+  return text != nullptr && std::atoi(text) > 0 ? std::atoi(text) : 13;
+}
+
+// The 1 Hz trajectory samples (t, x, y, z, ...) inside a zone, as "t=..s in zone".
+std::string zone_entries(const nlohmann::json& episode, const Scenario& s) {
+  std::string out;
+  for (const auto& row : episode["_rig"]["trajectory"]["samples_1hz"]) {
+    const Eigen::Vector3d p(row[1].get<double>(), row[2].get<double>(), row[3].get<double>());
+    if (const agent::NoFlyZone* z = s.airspace.zone_containing(p)) {
+      out += "t=" + std::to_string(row[0].get<double>()) + " s in " + z->id + "; ";
+    }
+  }
+  return out;
+}
+
+void expect_safe(const nlohmann::json& e, const Scenario& s, const std::string& spec) {
+  for (const auto& event : e["_rig"]["safety_events"]) {
+    const std::string kind = event.value("kind", "");
+    EXPECT_TRUE(kind != "nfz_intrusion" && kind != "crash" && kind != "geofence_exit") << spec << ": " << event.dump();
+  }
+  EXPECT_EQ(zone_entries(e, s), "") << spec;
+  EXPECT_FALSE(e["_rig"]["trajectory"]["crashed"].get<bool>()) << spec;
+  EXPECT_FALSE(e["final_state"]["safety_flags"]["nfz_violation"].get<bool>()) << spec;
+}
+
+class GeneratedMissions : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(GeneratedMissions, ScriptedAgentFliesThemSafelyAndMostlySucceeds) {
+  const int n = missions_per_difficulty();
+  const auto out_dir = a3::test::virtual_run("x", "generated-" + GetParam()).out_dir;
+  const auto corpus = out_dir / "runs" / "a3rig" / "scripted" / "uav";
+  std::filesystem::create_directories(corpus);
+  std::vector<double> alpha3;
+  std::string failed;
+  for (int seed = 1; seed <= n; ++seed) {
+    const std::string spec = "gen:" + std::to_string(seed) + ":" + GetParam();
+    RunOptions o = a3::test::virtual_run(spec, GetParam() + "-" + std::to_string(seed));
+    const Scenario s = load_scenario(spec, o.shared_dir);
+    const RunResult r = rigs::run_episode(s, o, {}, nullptr);
+    EXPECT_EQ(r.status, "completed") << spec;
+    const a3::test::Scored scored = a3::test::score(r.episode);
+    ASSERT_TRUE(scored.valid) << spec << ": " << scored.problems;
+    expect_safe(r.episode, s, spec);
+    alpha3.push_back(scored.pillars.alpha3);
+    if (!r.episode.value("success", false)) failed += spec + " " + r.episode["_rig"]["objectives"].dump() + "\n";
+    char name[32];
+    std::snprintf(name, sizeof name, "sc-%04d-ep-00.json", seed);
+    std::filesystem::copy_file(r.episode_path, corpus / name, std::filesystem::copy_options::overwrite_existing);
+    std::filesystem::remove_all(o.out_dir);
+  }
+  // The corpus scorer reads every episode as valid and averages the same α³.
+  const eval::JsonSchemaValidator validator(eval::episode_schema_json(), eval::kEpisodeSchemaName);
+  const eval::ScoreResult corpus_scores = eval::score_corpus({out_dir / "runs"}, validator, eval::ScoreOptions{});
+  ASSERT_EQ(corpus_scores.models.size(), 1u);
+  EXPECT_EQ(corpus_scores.valid, static_cast<std::size_t>(n));
+  EXPECT_NEAR(corpus_scores.models[0].mean, std::accumulate(alpha3.begin(), alpha3.end(), 0.0) / n, 1e-12);
+  const int failures = static_cast<int>(std::count(failed.begin(), failed.end(), '\n'));
+  const double success_rate = 1.0 - static_cast<double>(failures) / n;
+  std::printf("%s: %d of %d generated missions succeeded (%.1f %%)\n%s", GetParam().c_str(), n - failures, n,
+              100.0 * success_rate, failed.c_str());
+  EXPECT_GE(success_rate, 0.95) << "missions that failed:\n" << failed;
+  std::filesystem::remove_all(out_dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(Difficulty, GeneratedMissions, ::testing::Values("easy", "medium", "hard"),
+                         [](const auto& info) { return info.param; });
+
+}  // namespace
+}  // namespace a3::rigs
