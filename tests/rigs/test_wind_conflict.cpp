@@ -28,6 +28,12 @@ class HeadwindAgent final : public agent::Agent {
   std::string name() const override { return "headwind-test"; }
   agent::AgentDecision decide(const agent::AgentContext& context) override {
     agent::AgentDecision d;
+    if (context.turn_number == 3) {  // in flight: the same route again, to read the wind it now assumes
+      d.intent = "navigate_to_target";
+      d.text = "Flying on to the mast.";
+      d.actions = json::array({navigate_to_mast()});
+      return d;
+    }
     if (context.turn_number > 1) {
       d.intent = "monitor";
       d.text = "Flying on.";
@@ -37,14 +43,18 @@ class HeadwindAgent final : public agent::Agent {
     d.text = "Taking off for the mast, checking the traffic.";
     d.actions = json::array(
         {{{"type", "mcp"}, {"name", "takeoff"}, {"args", {{"altitude_m", kMast_W_m.z()}}}},
-         {{"type", "mcp"},
-          {"name", "navigate_to"},
-          {"args", {{"waypoints", {{kMast_W_m.x(), kMast_W_m.y(), kMast_W_m.z()}}}, {"speed_mps", kCommanded_mps}}}},
+         navigate_to_mast(),
          {{"type", "a2a"}, {"task", "collision_avoidance"}, {"to", "uav_swarm_agent"}, {"payload", {{"request", request_}}}}});
     return d;
   }
 
  private:
+  static json navigate_to_mast() {
+    return {{"type", "mcp"},
+            {"name", "navigate_to"},
+            {"args", {{"waypoints", {{kMast_W_m.x(), kMast_W_m.y(), kMast_W_m.z()}}}, {"speed_mps", kCommanded_mps}}}};
+  }
+
   std::string request_;
 };
 
@@ -69,6 +79,15 @@ int breaches(const json& episode) {
     if (ev["kind"] == "separation_breach" && ev["detail"].get<std::string>().rfind("enter", 0) == 0) ++n;
   }
   return n;
+}
+
+// The wind the route of the agent's turn 3 (in flight) assumed.
+json wind_in_flight(const json& episode) {
+  for (const auto& turn : episode["dialogue"]) {
+    if (turn["speaker"] == "agent" && turn["turn"] == 3 && !turn["obs"].empty()) return turn["obs"][0]["result"]["wind"];
+  }
+  ADD_FAILURE() << "no observation in turn 3";
+  return json();
 }
 
 // When the vehicle flew past x = 250 (the patrol's line), from the 1 Hz trajectory.
@@ -109,6 +128,12 @@ TEST(WindConflict, TheHeadwindPredictionCallsTheConflictThatThenHappensWithoutAv
   EXPECT_NEAR(asked_s + peer["time_to_closest_s"].get<double>(), crossing_time_s(r.episode), 15.0) << answer.dump();
   EXPECT_TRUE(r.episode["final_state"]["safety_flags"]["separation_breach"].get<bool>());
   EXPECT_GE(breaches(r.episode), 1);
+  // In flight the estimate comes from the drag balance: the forecast 7 m/s from the east, plus
+  // what the gusts add on average.
+  const json wind = wind_in_flight(r.episode);
+  EXPECT_EQ(wind.value("source", ""), "telemetry") << wind.dump();
+  EXPECT_NEAR(wind.value("speed_mps", 0.0), 7.5, 1.5) << wind.dump();
+  EXPECT_NEAR(wind.value("from_deg", 0.0), 90.0, 15.0) << wind.dump();
 }
 
 TEST(WindConflict, AskingThePatrolToYieldOnThatPredictionAvoidsTheBreach) {
