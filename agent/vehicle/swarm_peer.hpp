@@ -2,7 +2,8 @@
 // its answers to collision_avoidance, swarm_status_check and swarm_formation, by rules on the
 // rig's true state:
 //   - collision_avoidance predicts, over horizon_s, the closest approach between our vehicle's
-//     predicted path and each peer's plan (exactly: both are piecewise linear in time). A peer
+//     predicted path (SelfView::predicted: its legs timed at the ground speed it makes good in
+//     the estimated wind, not the commanded speed) and each peer's plan (exactly: both are piecewise linear in time). A peer
 //     is in conflict when that approach is closer than its min_separation_m + conflict_buffer_m.
 //     With request "yield" or "pass" (the default), a conflicting peer that yields_when_asked
 //     and has not yielded yet climbs yield_climb_m from now at yield_climb_rate_mps (its plan
