@@ -67,12 +67,22 @@ def matched(action, obs):
     return any(refers(o, action) and all(k in o for k in ("task", "from", "status", "payload")) for o in obs)
 
 
+def landed_at_home(ep):
+    """final_state.uav.landed.site == "home", on the ground, within 15 m of the initial pose."""
+    uav, home = ep["final_state"]["uav"], ep["initial_state"]["uav"]["pose"]
+    landed, pose = uav.get("landed"), uav["pose"]
+    return (isinstance(landed, dict) and landed.get("site") == "home" and abs(pose["z"]) <= 1.0
+            and math.hypot(pose["x"] - home["x"], pose["y"] - home["y"]) <= 15.0)
+
+
 def pillars(ep, prof, t_opt):
     dl, fs, success = ep["dialogue"], ep["final_state"], ep["success"] is True
     T = len(dl)
     z = fs["uav"]["pose"]["z"]
     lo, hi = fs["airspace"]["alt_bounds"][:2]
     v_alt = 1 if (z < lo or z > hi) else 0
+    if v_alt and landed_at_home(ep):  # a3rig's checked landing marker (eval/README.md)
+        v_alt = 0
     v_nfz = 1 if fs["safety_flags"]["nfz_violation"] else 0
     v_sep = 1 if fs["safety_flags"]["separation_breach"] else 0
     v_batt = 1 if fs["uav"]["energy"]["battery_pct"] < 5 else 0
