@@ -47,6 +47,15 @@ int agent_turn_budget(const MissionKnobs& k) {
   return k.turns / 2 - 3 - k.traffic - k.degradations;
 }
 
+bool is_area(ObjectiveType t) { return t == ObjectiveType::kSurvey || t == ObjectiveType::kThermalSearch; }
+
+// The way around no-fly zones to an area is a turn of its own (route, then lawnmower); to a
+// point the route ends at the point. Zones sit across the first leg, so it counts when the
+// first objective is an area, which happens only when every objective is one.
+int detour_turns(const MissionKnobs& k, const std::vector<ObjectiveType>& kinds) {
+  return k.no_fly_zones > 0 && std::all_of(kinds.begin(), kinds.end(), is_area) ? 1 : 0;
+}
+
 std::vector<ObjectiveType> draw_kinds(const MissionKnobs& k, Rng& rng) {
   const std::vector<std::pair<ObjectiveType, int>> given = {{ObjectiveType::kSurvey, k.surveys},
                                                             {ObjectiveType::kImagePoint, k.image_points},
@@ -65,18 +74,23 @@ std::vector<ObjectiveType> draw_kinds(const MissionKnobs& k, Rng& rng) {
     std::vector<ObjectiveType> fitting;
     const int still_to_draw = k.objectives - static_cast<int>(kinds.size()) - 1;  // at least a turn each
     for (auto t : candidates) {
-      if (steps + objective_steps(t) + still_to_draw <= budget) fitting.push_back(t);
+      std::vector<ObjectiveType> with = kinds;
+      with.push_back(t);
+      const int detour = still_to_draw == 0 ? detour_turns(k, with) : 0;
+      if (steps + objective_steps(t) + still_to_draw + detour <= budget) fitting.push_back(t);
     }
     if (fitting.empty()) break;
     kinds.push_back(pick(rng, fitting));
     steps += objective_steps(kinds.back());
   }
-  if (steps > budget || static_cast<int>(kinds.size()) < k.objectives) {
+  if (steps + detour_turns(k, kinds) > budget || static_cast<int>(kinds.size()) < k.objectives) {
     throw common::InputError("gen knobs: " + std::to_string(k.objectives) + " objectives do not fit turns=" +
                              std::to_string(k.turns) + " (" + std::to_string(budget) +
-                             " agent turns for objectives; an image point takes 2, other kinds 1)");
+                             " agent turns for objectives; an image point takes 2, other kinds 1, the way around "
+                             "no-fly zones to an area 1)");
   }
   for (std::size_t i = kinds.size(); i > 1; --i) std::swap(kinds[i - 1], kinds[static_cast<std::size_t>(rng.uniform01() * i)]);
+  if (k.no_fly_zones > 0) std::stable_partition(kinds.begin(), kinds.end(), [](ObjectiveType t) { return !is_area(t); });
   return kinds;
 }
 
