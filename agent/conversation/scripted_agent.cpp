@@ -31,7 +31,8 @@ double number(const nlohmann::json& j, const char* key, double fallback) {
 
 bool is_motion(const nlohmann::json& action) {
   const std::string name = action.value("name", "");
-  return name == "takeoff" || name == "set_waypoint" || name == "navigate_to" || name == "execute_maneuver";
+  return name == "takeoff" || name == "set_waypoint" || name == "navigate_to" || name == "execute_maneuver" ||
+         name == "return_to_home";
 }
 
 // Where an objective's work starts (for planning a route to it).
@@ -58,6 +59,7 @@ ScriptedAgent::Leg area_leg(const Objective& o) {
   leg.text = thermal ? "Searching " + o.id + " with the thermal camera." : "Surveying " + o.id + ".";
   leg.ends_at_point = false;
   leg.end_W_m = Eigen::Vector3d(objective_anchor(o).x(), objective_anchor(o).y(), o.altitude_m);
+  leg.anchor_W_m = leg.end_W_m;
   return leg;
 }
 
@@ -67,6 +69,7 @@ ScriptedAgent::Leg image_leg(const Objective& o) {
   leg.intent = "navigate_to_target";
   leg.text = "Flying to " + o.id + " to image it.";
   leg.end_W_m = Eigen::Vector3d(o.point.x(), o.point.y(), o.altitude_m);
+  leg.anchor_W_m = leg.end_W_m;
   leg.capture = true;
   if (o.sensor != "rgb") leg.capture_actions.push_back(mcp("activate_sensor", {{"sensor", o.sensor}}));
   leg.capture_actions.push_back(mcp("capture_image", {{"sensor", o.sensor}}));
@@ -84,6 +87,7 @@ ScriptedAgent::Leg delivery_leg(const Objective& o, double cruise_z_m) {
   leg.intent = "deliver_package";
   leg.text = "Flying the parcel to " + o.id + " and descending to drop it.";
   leg.end_W_m = Eigen::Vector3d(o.point.x(), o.point.y(), drop_z_m);
+  leg.anchor_W_m = Eigen::Vector3d(o.point.x(), o.point.y(), cruise_z_m);
   return leg;
 }
 
@@ -92,16 +96,35 @@ const Turn* turn_at(const AgentContext& c, int i) {
   return i >= 0 && i < static_cast<int>(c.dialogue->size()) ? &(*c.dialogue)[i] : nullptr;
 }
 
-// Every motion command of the turn was accepted by the vehicle.
-bool motion_accepted(const Turn& t) {
-  for (std::size_t i = 0; i < t.actions.size() && i < t.obs.size(); ++i) {
+// "accepted" when every motion command of the turn was, else the first refusal ("refused",
+// "error") or loss ("timeout", no answer).
+std::string motion_answer(const Turn& t) {
+  for (std::size_t i = 0; i < t.actions.size(); ++i) {
     if (!is_motion(t.actions[i])) continue;
-    const nlohmann::json& o = t.obs[i];
-    const bool ok = o.is_object() && o.contains("result") && o["result"].is_object() &&
-                    o["result"].value("status", "") == "accepted";
-    if (!ok) return false;
+    const nlohmann::json* o = i < t.obs.size() ? &t.obs[i] : nullptr;
+    const bool answered = o != nullptr && o->is_object() && o->contains("result") && (*o)["result"].is_object();
+    const std::string status = answered ? (*o)["result"].value("status", "") : "timeout";
+    if (status == "refused" || status == "error" || status == "timeout") return status;
   }
-  return true;
+  return "accepted";
+}
+
+// The waypoints of the newest ground-station route asked for to `goal` (horizontally), or empty.
+std::vector<nlohmann::json> planned_route_to(const AgentContext& c, const Eigen::Vector2d& goal) {
+  std::vector<nlohmann::json> route;
+  for (const Turn& t : *c.dialogue) {
+    for (std::size_t i = 0; i < t.actions.size() && i < t.obs.size(); ++i) {
+      const nlohmann::json& a = t.actions[i];
+      const nlohmann::json& o = t.obs[i];
+      if (a.value("task", "") != "path_plan" || !o.is_object() || o.value("status", "") != "ok") continue;
+      const nlohmann::json asked = a.contains("payload") ? a["payload"].value("goal", nlohmann::json()) : nullptr;
+      if (!asked.is_array() || asked.size() < 2 || !asked[0].is_number() || !asked[1].is_number()) continue;
+      if ((Eigen::Vector2d(asked[0].get<double>(), asked[1].get<double>()) - goal).norm() > 1.0) continue;
+      const nlohmann::json w = o.contains("payload") ? o["payload"].value("waypoints", nlohmann::json()) : nullptr;
+      if (w.is_array() && !w.empty()) route.assign(w.begin(), w.end());
+    }
+  }
+  return route;
 }
 
 // The newest read_telemetry result of the turns after index `after`, or null; *turn_index: its turn.
@@ -170,7 +193,9 @@ bool is_hard_network(const nlohmann::json& net) {
 ScriptedAgent::LegStatus leg_status(const AgentContext& c, const ScriptedAgent::Leg& leg, int leg_turn_index) {
   const Turn* sent = turn_at(c, leg_turn_index);
   if (sent == nullptr) return ScriptedAgent::LegStatus::kUnknown;
-  if (!motion_accepted(*sent)) return ScriptedAgent::LegStatus::kLost;
+  const std::string answer = motion_answer(*sent);
+  if (answer == "refused" || answer == "error") return ScriptedAgent::LegStatus::kRefused;
+  if (answer != "accepted") return ScriptedAgent::LegStatus::kLost;
   if (!leg.capture && supervisor_confirmed(c, leg_turn_index, leg.objective_id)) return ScriptedAgent::LegStatus::kDone;
   // The newest evidence decides: telemetry of the supervisor's latest turn, else the supervisor's
   // word that the vehicle has come to rest since, else older telemetry.
@@ -230,17 +255,9 @@ int ScriptedAgent::turns_needed_after_preflight() const {
   return turns;
 }
 
-std::vector<nlohmann::json> ScriptedAgent::route_for(const AgentContext& c, const nlohmann::json& motion) {
-  // The ground station's path_plan answer (pre-flight, for the first leg from home), if any.
-  std::vector<nlohmann::json> route;
-  for (const Turn& t : *c.dialogue) {
-    for (const auto& o : t.obs) {
-      if (o.value("task", "") == "path_plan" && o.value("status", "") == "ok" && o.contains("payload") &&
-          o["payload"].contains("waypoints") && o["payload"]["waypoints"].is_array()) {
-        for (const auto& w : o["payload"]["waypoints"]) route.push_back(w);
-      }
-    }
-  }
+std::vector<nlohmann::json> ScriptedAgent::route_for(const AgentContext& c, const Leg& leg,
+                                                     const nlohmann::json& motion) const {
+  std::vector<nlohmann::json> route = planned_route_to(c, leg.anchor_W_m.head<2>());
   if (route.empty()) return route;
   // The planner's detour, ending with the leg's own waypoints: its target altitude, its descent.
   const std::string name = motion.value("name", "");
@@ -257,14 +274,36 @@ std::vector<nlohmann::json> ScriptedAgent::route_for(const AgentContext& c, cons
   return route;
 }
 
+void ScriptedAgent::put_transit_before_pattern(const AgentContext& c) {
+  // A pattern (survey) cannot follow a route itself: fly the route to its start first.
+  Leg& pattern = legs_[leg_];
+  if (pattern.ends_at_point || pattern.transit_planned) return;
+  std::vector<nlohmann::json> route = planned_route_to(c, pattern.anchor_W_m.head<2>());
+  if (route.empty()) return;
+  pattern.transit_planned = true;
+  Leg transit;
+  transit.objective_id = pattern.objective_id + "-transit";
+  transit.intent = "navigate_around_no_fly_zone";
+  transit.text = "Flying the ground station's route around the no-fly zone to " + pattern.objective_id + ".";
+  route.back() = {pattern.anchor_W_m.x(), pattern.anchor_W_m.y(), pattern.anchor_W_m.z()};
+  transit.actions.push_back(mcp("navigate_to", {{"waypoints", route}}));
+  transit.end_W_m = pattern.anchor_W_m;
+  transit.anchor_W_m = pattern.anchor_W_m;
+  transit.radius_m = 10.0;
+  transit.is_route = true;
+  legs_.insert(legs_.begin() + static_cast<std::ptrdiff_t>(leg_), std::move(transit));
+}
+
 void ScriptedAgent::add_leg_motion(const AgentContext& c, Choice* choice) {
-  const Leg& leg = legs_[leg_];
+  put_transit_before_pattern(c);
+  Leg& leg = legs_[leg_];
+  ++leg.sends;
   if (!launched_) {
     choice->actions.push_back(mcp("takeoff", {{"altitude_m", c.mission->cruise_altitude_m}}));
     launched_ = true;
   }
   for (const auto& a : leg.actions) {
-    auto route = leg_ == 0 && is_motion(a) ? route_for(c, a) : std::vector<nlohmann::json>{};
+    auto route = is_motion(a) && !leg.is_route ? route_for(c, leg, a) : std::vector<nlohmann::json>{};
     choice->actions.push_back(route.empty() ? a : mcp("navigate_to", {{"waypoints", route}}));
   }
   choice->intent += (choice->intent.empty() ? "" : "+") + leg.intent;
@@ -273,11 +312,12 @@ void ScriptedAgent::add_leg_motion(const AgentContext& c, Choice* choice) {
   leg_turn_index_ = static_cast<int>(c.dialogue->size());
 }
 
-void ScriptedAgent::add_return(Choice* choice) {
+void ScriptedAgent::add_return(const AgentContext& c, Choice* choice) {
   choice->actions.push_back(mcp("return_to_home"));
   choice->intent += std::string(choice->intent.empty() ? "" : "+") + "return_to_home";
   choice->text += std::string(choice->text.empty() ? "" : " ") + "Mission tasks done: returning home to land.";
   returned_ = true;
+  return_turn_index_ = static_cast<int>(c.dialogue->size());
 }
 
 ScriptedAgent::Choice ScriptedAgent::preflight_choice(const AgentContext& c) {
@@ -301,7 +341,34 @@ ScriptedAgent::Choice ScriptedAgent::after_leg_done(const AgentContext& c, int a
   if (leg_ < legs_.size() && agent_turns_left > 1) {
     add_leg_motion(c, &choice);
   } else {
-    add_return(&choice);
+    add_return(c, &choice);
+  }
+  return choice;
+}
+
+ScriptedAgent::Choice ScriptedAgent::after_refusal(const AgentContext& c, int agent_turns_left) {
+  const Leg& leg = legs_[leg_];
+  const bool has_zones = c.airspace.contains("no_fly_zones") && !c.airspace["no_fly_zones"].empty();
+  leg_sent_ = false;
+  if (has_zones && leg.sends < 3 && planned_route_to(c, leg.anchor_W_m.head<2>()).empty()) {
+    // Refused on the way (a no-fly zone): ask the ground station for a route from here; the
+    // next turn flies the leg along it.
+    return {"request_route", "The gate refused the direct leg to " + leg.objective_id + "; asking for a route around.",
+            {a2a("path_plan", "ground_station",
+                 {{"goal", {leg.anchor_W_m.x(), leg.anchor_W_m.y()}}, {"z", leg.anchor_W_m.z()}})}};
+  }
+  if (leg.sends < 3) {
+    Choice choice{"", "The gate refused the last leg; sending it along the planned route.", {}};
+    add_leg_motion(c, &choice);
+    return choice;
+  }
+  // Refused again and again: give this objective up and go on with the next.
+  ++leg_;
+  Choice choice{"", "The gate keeps refusing " + leg.objective_id + "; moving on.", {}};
+  if (leg_ < legs_.size() && agent_turns_left > 1) {
+    add_leg_motion(c, &choice);
+  } else {
+    add_return(c, &choice);
   }
   return choice;
 }
@@ -310,13 +377,20 @@ ScriptedAgent::Choice ScriptedAgent::next_choice(const AgentContext& c) {
   const int agent_turns_left = (c.max_turns - c.turn_number) / 2 + 1;
   if (!preflight_done_) return preflight_choice(c);
   if (returned_) {
+    const Turn* sent = turn_at(c, return_turn_index_);
+    if (sent != nullptr && motion_answer(*sent) != "accepted") {
+      // The return was lost or not confirmed on a poor link: send it again.
+      Choice again{"", "The return command was not confirmed; sending it again.", {}};
+      add_return(c, &again);
+      return again;
+    }
     const bool first_after = !c.dialogue->empty() && c.dialogue->back().intent == "acknowledge_landing";
     return {first_after ? "confirm_landing" : "status_report",
             first_after ? "Confirming the landing." : "Reporting status.", {mcp("read_telemetry")}};
   }
   Choice choice;
   if (leg_ >= legs_.size()) {
-    add_return(&choice);
+    add_return(c, &choice);
     return choice;
   }
   if (!leg_sent_) {
@@ -326,8 +400,11 @@ ScriptedAgent::Choice ScriptedAgent::next_choice(const AgentContext& c) {
   switch (leg_status(c, legs_[leg_], leg_turn_index_)) {
     case LegStatus::kDone:
       return after_leg_done(c, agent_turns_left);
+    case LegStatus::kRefused:
+      if (agent_turns_left > 1) return after_refusal(c, agent_turns_left);
+      break;
     case LegStatus::kLost:
-      if (agent_turns_left > 1) {
+      if (agent_turns_left > 1 && legs_[leg_].sends < 3) {
         choice = {"", "The last leg did not get there; sending it again.", {}};
         add_leg_motion(c, &choice);
         return choice;
@@ -339,7 +416,7 @@ ScriptedAgent::Choice ScriptedAgent::next_choice(const AgentContext& c) {
       break;
   }
   // The last turn, the leg unfinished: come home rather than stay out.
-  add_return(&choice);
+  add_return(c, &choice);
   return choice;
 }
 

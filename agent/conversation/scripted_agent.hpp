@@ -8,8 +8,9 @@
 // point and altitude, within the objective's own radius), the supervisor's acknowledgement of
 // the objective, or the supervisor's status request (it asks only once the vehicle has come to
 // rest). A capture needs that evidence; a leg whose command was lost, or that came to rest
-// elsewhere, is sent again; without evidence it checks telemetry while the turn budget has
-// turns to spare. Turn budgeting folds only what can be done at once: a capture with the next
+// elsewhere, is sent again; a leg the gate refused gets a route from the ground station (a
+// pattern behind a no-fly zone: a transit along the route first), and is given up after three
+// sends; without evidence it checks telemetry while the turn budget has turns to spare. Turn budgeting folds only what can be done at once: a capture with the next
 // leg (capture first, then move on), the last capture with the return, and — when the
 // budget is short — the pre-flight with the launch; never a leg with the capture at its end.
 // It adapts every turn to the network: on a hard link it asks for URLLC and keeps images on
@@ -44,9 +45,14 @@ class ScriptedAgent final : public Agent {
     bool capture = false;
     std::vector<nlohmann::json> capture_actions;
     std::string capture_intent, capture_text;
+    // Where the motion starts its work (its first point): routes around no-fly zones end here.
+    Eigen::Vector3d anchor_W_m = Eigen::Vector3d::Zero();
+    bool transit_planned = false;  // a pattern leg: a transit along a route has been put before it
+    bool is_route = false;         // a transit: its motion is a route already
+    int sends = 0;                 // times its motion has been sent
   };
   // Where the last leg stands, from the evidence in the dialogue.
-  enum class LegStatus { kDone, kFlying, kLost, kUnknown };
+  enum class LegStatus { kDone, kFlying, kLost, kRefused, kUnknown };
 
  private:
   struct Choice {
@@ -58,11 +64,14 @@ class ScriptedAgent final : public Agent {
   Choice preflight_choice(const AgentContext& context);
   Choice after_leg_done(const AgentContext& context, int agent_turns_left);
   void add_leg_motion(const AgentContext& context, Choice* choice);
-  void add_return(Choice* choice);
+  void add_return(const AgentContext& context, Choice* choice);
   // Agent turns the rest of the plan needs at least, from the current leg on (pre-flight
   // excluded), with one check on the way for every leg sent right after a capture.
   int turns_needed_after_preflight() const;
-  std::vector<nlohmann::json> route_for(const AgentContext& context, const nlohmann::json& motion);
+  // The leg's motion along the ground station's route to its anchor, if it gave one; else empty.
+  std::vector<nlohmann::json> route_for(const AgentContext& context, const Leg& leg, const nlohmann::json& motion) const;
+  void put_transit_before_pattern(const AgentContext& context);
+  Choice after_refusal(const AgentContext& context, int agent_turns_left);
   std::vector<nlohmann::json> adapt_to_network(const AgentContext& context, std::vector<nlohmann::json> actions);
 
   bool planned_ = false;
@@ -74,8 +83,8 @@ class ScriptedAgent final : public Agent {
   bool leg_sent_ = false;        // the current leg's motion has been sent
   bool returned_ = false;        // return_to_home has been sent
   bool images_held_ = false;     // captures kept on board while the link was poor
-  bool detour_flown_ = false;    // the ground station's route has been used
   int leg_turn_index_ = -1;      // dialogue index of the turn that sent the current leg
+  int return_turn_index_ = -1;   // dialogue index of the turn that sent return_to_home
 };
 
 // The SPEC §2 "hard" test on an n_t object.
