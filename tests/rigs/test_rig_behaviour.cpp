@@ -50,7 +50,9 @@ std::string scenario_with_trace(const a3::test::TempDir& dir, const std::string&
 TEST(RigBehaviour, AThinkTimeThatMissesTheConflictCausesAMeasuredBreach) {
   RunOptions fast = a3::test::virtual_run("traffic-conflict", "fast");
   RunOptions slow = fast;
-  slow.think_time = "60";
+  // 90 s per decision: the vehicle reaches the tower late and hovers there while the patrol
+  // passes (at t ≈ 287 s and 353 s), with no turn in time to ask it to yield.
+  slow.think_time = "90";
   slow.out_dir += "-slow";
   const RunResult a = a3::test::run(fast);
   const RunResult b = a3::test::run(slow);
@@ -62,10 +64,10 @@ TEST(RigBehaviour, AThinkTimeThatMissesTheConflictCausesAMeasuredBreach) {
   ASSERT_TRUE(sa.valid && sb.valid) << sa.problems << sb.problems;
   EXPECT_DOUBLE_EQ(sa.pillars.sp, 1.0);
   EXPECT_LT(sb.pillars.sp, 1.0);
-  // The think time really was charged: each agent turn's decision came 60 s after its start.
+  // The think time really was charged: each agent turn's decision came 90 s after its start.
   for (const auto& t : b.episode["_rig"]["turns"]) {
     if (t["speaker"] == "agent") {
-      EXPECT_NEAR(t["decided_s"].get<double>() - t["started_s"].get<double>(), 60.0, 1e-6);
+      EXPECT_NEAR(t["decided_s"].get<double>() - t["started_s"].get<double>(), 90.0, 1e-6);
     }
   }
   std::filesystem::remove_all(fast.out_dir);
