@@ -21,7 +21,7 @@ TEST(SweepEndToEnd, ASlowAgentBreachesSeparationAndTheFigureIsDrawn) {
   const fs::path out = fs::temp_directory_path() / ("a3-sweep-e2e-" + std::to_string(::getpid()));
   fs::remove_all(out);
   ::setenv("A3_SHARED_DIR", a3::test::shared_dir().c_str(), 0);
-  const auto grid = expand_grid(make_axes("traffic-conflict", "scripted", "0,60", "URLLC", "1"));
+  const auto grid = expand_grid(make_axes("traffic-conflict", "scripted", "0,90", "URLLC", "1"));
   ASSERT_EQ(grid.size(), 2u);
   ChildProcessOptions child;
   child.a3rig_exe = A3RIG_EXE;
@@ -39,8 +39,8 @@ TEST(SweepEndToEnd, ASlowAgentBreachesSeparationAndTheFigureIsDrawn) {
   const ResultRow& fast = rows[0];
   const ResultRow& slow = rows[1];
   EXPECT_EQ(fast.think_time, "0");
-  EXPECT_EQ(slow.think_time, "60");
-  EXPECT_DOUBLE_EQ(slow.think_time_mean_s, 60.0);
+  EXPECT_EQ(slow.think_time, "90");
+  EXPECT_DOUBLE_EQ(slow.think_time_mean_s, 90.0);
   ASSERT_TRUE(fast.valid && slow.valid);
   EXPECT_DOUBLE_EQ(fast.sp, 1.0);
   EXPECT_DOUBLE_EQ(slow.sp, 0.5);
