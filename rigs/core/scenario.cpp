@@ -230,11 +230,16 @@ std::vector<std::string> builtin_scenario_names() {
   return names;
 }
 
+std::optional<nlohmann::json> builtin_scenario_json(const std::string& name) {
+  for (const auto& [builtin, text] : builtin_scenarios()) {
+    if (builtin == name) return common::parse_json_text(text, "scenario " + name);
+  }
+  return std::nullopt;
+}
+
 Scenario load_scenario(const std::string& spec, const std::filesystem::path& shared_dir) {
   if (is_generator_spec(spec)) return generate_scenario(spec);  // gen:SEED[:knobs] (scenario_generator.hpp)
-  for (const auto& [name, text] : builtin_scenarios()) {
-    if (name == spec) return scenario_from_json(common::parse_json_text(text, "scenario " + std::string(name)), "scenario " + std::string(name), ".");
-  }
+  if (const auto builtin = builtin_scenario_json(spec)) return scenario_from_json(*builtin, "scenario " + spec, ".");
   if (spec.rfind("alphabench:", 0) == 0) {
     const std::filesystem::path p = alphabench_path(spec, shared_dir);
     const auto doc = common::load_json_file(p);

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,8 @@ Scenario scenario_from_json(const nlohmann::json& j, const std::string& where,
 // folder's alphabench/eval_runs, or absolute).
 Scenario load_scenario(const std::string& spec, const std::filesystem::path& shared_dir);
 std::vector<std::string> builtin_scenario_names();
+// The document of a built-in scenario, nullopt for a name that is not one.
+std::optional<nlohmann::json> builtin_scenario_json(const std::string& name);
 
 // A default mission for a corpus initial_state: take off from below its pose, image a point
 // up to 250 m away toward the geofence's centre, and return and land. The state is checked

@@ -20,12 +20,7 @@ namespace {
 
 using json = nlohmann::json;
 
-json nfz_detour() {
-  for (const auto& [name, text] : builtin_scenarios()) {
-    if (name == "nfz-detour") return common::parse_json_text(text, "nfz-detour");
-  }
-  throw std::runtime_error("nfz-detour is not built in");
-}
+json nfz_detour() { return builtin_scenario_json("nfz-detour").value(); }
 
 // The error of loading `doc`, or "" when it loads.
 std::string load_error(const json& doc) {

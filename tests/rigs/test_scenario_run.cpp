@@ -9,8 +9,7 @@
 #include <string>
 #include <unistd.h>
 
-#include "common/json_text.hpp"
-#include "rigs/core/builtin_scenarios.hpp"
+#include "rigs/core/scenario.hpp"
 #include "tests/integration/run_command.hpp"
 #include "tests/rigs/rig_test_support.hpp"
 
@@ -19,12 +18,7 @@ namespace {
 
 using json = nlohmann::json;
 
-json nfz_detour() {
-  for (const auto& [name, text] : builtin_scenarios()) {
-    if (name == "nfz-detour") return common::parse_json_text(text, "nfz-detour");
-  }
-  throw std::runtime_error("nfz-detour is not built in");
-}
+json nfz_detour() { return builtin_scenario_json("nfz-detour").value(); }
 
 std::filesystem::path temp_dir() {
   const auto dir = std::filesystem::temp_directory_path() / ("a3rig-test-scenario-run-" + std::to_string(::getpid()));
