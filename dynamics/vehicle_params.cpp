@@ -2,6 +2,7 @@
 #include "dynamics/vehicle_params.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "common/json_file.hpp"
 #include "dynamics/airframe_default.hpp"
@@ -143,6 +144,13 @@ VehicleParams with_payloads(VehicleParams params, const std::vector<Payload>& pa
     params.payloads.push_back(p);
   }
   return params;
+}
+
+double airspeed_for_drag_mps(const AeroParams& aero, double force_N) {
+  const double a = 0.5 * kAirDensity_kgpm3 * aero.drag_cdA_m2;
+  const double b = aero.linear_drag_Ns_per_m;
+  if (a <= 0.0) return b > 0.0 ? force_N / b : std::numeric_limits<double>::infinity();
+  return (-b + std::sqrt(b * b + 4.0 * a * force_N)) / (2.0 * a);
 }
 
 }  // namespace a3::dynamics

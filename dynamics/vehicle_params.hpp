@@ -68,6 +68,10 @@ struct VehicleParams {
 inline constexpr double kGravity_mps2 = 9.80665;
 inline constexpr double kAirDensity_kgpm3 = 1.225;  // ISA sea level
 
+// The steady airspeed at which the airframe's drag (linear plus quadratic, sea-level air)
+// equals `force_N`: ½ ρ CdA v² + c v = F solved for v >= 0 (infinite without any drag).
+double airspeed_for_drag_mps(const AeroParams& aero, double force_N);
+
 // Parses an airframe object; `where` names the source in errors. Throws common::InputError
 // naming the file and JSON path of a missing, mistyped or out-of-range field.
 VehicleParams vehicle_params_from_json(const nlohmann::json& j, const std::string& where);

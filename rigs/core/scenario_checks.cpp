@@ -134,12 +134,7 @@ double wind_hold_limit_mps(const dynamics::VehicleParams& v, double max_tilt_deg
   const double max_thrust_N = 4.0 * v.rotor.thrust_coeff_N_per_radps2 * v.rotor.max_speed_radps * v.rotor.max_speed_radps;
   const double thrust_tilt_rad = weight_N < max_thrust_N ? std::acos(weight_N / max_thrust_N) : 0.0;
   const double tilt_rad = std::min(max_tilt_deg * M_PI / 180.0, thrust_tilt_rad);
-  const double side_force_N = weight_N * std::tan(tilt_rad);
-  // ½ ρ CdA v² + c v = F, solved for v >= 0.
-  const double a = 0.5 * dynamics::kAirDensity_kgpm3 * v.aero.drag_cdA_m2;
-  const double b = v.aero.linear_drag_Ns_per_m;
-  if (a <= 0.0) return b > 0.0 ? side_force_N / b : std::numeric_limits<double>::infinity();
-  return (-b + std::sqrt(b * b + 4.0 * a * side_force_N)) / (2.0 * a);
+  return dynamics::airspeed_for_drag_mps(v.aero, weight_N * std::tan(tilt_rad));
 }
 
 std::vector<std::string> scenario_problems(const Scenario& s, const dynamics::VehicleParams& loaded_airframe,

@@ -31,9 +31,7 @@ double max_airspeed_mps(const RigConfigs& c) {
   const auto& p = c.dynamics.params;
   const double force_N = p.total_mass_kg() * dynamics::kGravity_mps2 *
                          std::tan(c.fc.params.limits.max_tilt_deg * M_PI / 180.0);
-  const double a = 0.5 * dynamics::kAirDensity_kgpm3 * p.aero.drag_cdA_m2;
-  const double b = p.aero.linear_drag_Ns_per_m;
-  return a > 0.0 ? (-b + std::sqrt(b * b + 4.0 * a * force_N)) / (2.0 * a) : force_N / std::max(b, 1e-9);
+  return dynamics::airspeed_for_drag_mps(p.aero, force_N);
 }
 
 struct RouteWalk {
