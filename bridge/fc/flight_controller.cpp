@@ -100,7 +100,10 @@ FlightCommandResult FlightController::accept(const FlightCommand& c) {
 
 void FlightController::enter(FcMode mode) {
   if (mode != status_.mode) {
-    if (mode == FcMode::kReturnHome) return_phase_ = 0;
+    if (mode == FcMode::kReturnHome) {
+      return_phase_ = 0;
+      return_start_W_m_ = estimator_.state().p_W_m;
+    }
     if (mode == FcMode::kLand) landed_since_s_ = -1.0;
   }
   status_.mode = mode;
@@ -145,10 +148,40 @@ Eigen::Vector3d FlightController::goto_leg_start(const EstimatedState& e) const 
   return e.p_W_m;
 }
 
-Eigen::Vector3d FlightController::goto_velocity_setpoint(const Eigen::Vector3d& p_W, double dt_s) {
-  Eigen::Vector3d v = position_.velocity_setpoint(p_W, target_W_m_, speed_mps_);
-  if (path_.following()) v.head<2>() = path_.velocity_setpoint_mps(p_W.head<2>(), speed_mps_, dt_s);
+Eigen::Vector3d FlightController::goto_velocity_setpoint(const Eigen::Vector3d& p_W, double speed_mps, double dt_s) {
+  Eigen::Vector3d v = position_.velocity_setpoint(p_W, target_W_m_, speed_mps);
+  if (path_.following()) v.head<2>() = path_.velocity_setpoint_mps(p_W.head<2>(), speed_mps, dt_s);
   return v;
+}
+
+// Return home in three phases: climb (or keep altitude) over the point where it began, follow
+// the line from that point home at that altitude (as a go-to does), then land.
+Eigen::Vector3d FlightController::return_home_velocity_setpoint(const EstimatedState& e, double dt_s) {
+  const double altitude = std::max(params_.failsafe.return_altitude_m, params_.fence.min_altitude_m());
+  const double cruise_z = std::min(std::max(e.p_W_m.z(), altitude), params_.fence.max_altitude_m());
+  const double speed_mps = std::max(speed_mps_, params_.limits.default_speed_mps);
+  if (return_phase_ == 0) {
+    const Eigen::Vector3d p_sp(return_start_W_m_.x(), return_start_W_m_.y(), cruise_z);
+    const Eigen::Vector3d v_sp = position_.velocity_setpoint(e.p_W_m, p_sp, speed_mps);
+    if (std::abs(e.p_W_m.z() - cruise_z) < 1.0) {
+      return_phase_ = 1;
+      target_W_m_ = Eigen::Vector3d(home_W_m_.x(), home_W_m_.y(), cruise_z);
+      path_.start_leg(return_start_W_m_.head<2>(), home_W_m_.head<2>(), e.v_W_mps.head<2>());
+    }
+    return v_sp;
+  }
+  if (return_phase_ == 1) {
+    const Eigen::Vector3d v_sp = goto_velocity_setpoint(e.p_W_m, speed_mps, dt_s);
+    if ((e.p_W_m.head<2>() - target_W_m_.head<2>()).norm() < 1.0 && e.v_W_mps.head<2>().norm() < 0.5) {
+      hold_W_m_ = target_W_m_;
+      return_phase_ = 2;
+    }
+    return v_sp;
+  }
+  hold_W_m_.z() = e.p_W_m.z();
+  enter(FcMode::kLand);
+  landed_since_s_ = -1.0;
+  return Eigen::Vector3d::Zero();
 }
 
 FlightCommandResult FlightController::on_command(const FlightCommand& c, double t_s) {
@@ -332,36 +365,15 @@ FcOutput FlightController::step(double t_s) {
       v_sp = position_.velocity_setpoint(e.p_W_m, hold_W_m_, speed_mps_);
       break;
     case FcMode::kGoto:
-      v_sp = goto_velocity_setpoint(e.p_W_m, dt);
+      v_sp = goto_velocity_setpoint(e.p_W_m, speed_mps_, dt);
       if ((e.p_W_m - target_W_m_).norm() < kArrivedDistance_m && e.v_W_mps.norm() < kArrivedSpeed_mps) {
         hold_W_m_ = target_W_m_;
         enter(FcMode::kHold);
       }
       break;
-    case FcMode::kReturnHome: {
-      const double altitude = std::max(params_.failsafe.return_altitude_m, params_.fence.min_altitude_m());
-      const double cruise_z = std::min(std::max(e.p_W_m.z(), altitude), params_.fence.max_altitude_m());
-      if (return_phase_ == 0) {  // climb (or keep altitude) above the current point
-        const Eigen::Vector3d p_sp(e.p_W_m.x(), e.p_W_m.y(), cruise_z);
-        v_sp = position_.velocity_setpoint(e.p_W_m, p_sp, speed_mps_);
-        v_sp.x() = v_sp.y() = 0.0;
-        if (std::abs(e.p_W_m.z() - cruise_z) < 1.0) {
-          return_phase_ = 1;
-          target_W_m_ = Eigen::Vector3d(home_W_m_.x(), home_W_m_.y(), cruise_z);
-        }
-      } else if (return_phase_ == 1) {  // fly home at that altitude
-        v_sp = position_.velocity_setpoint(e.p_W_m, target_W_m_, std::max(speed_mps_, l.default_speed_mps));
-        if ((e.p_W_m.head<2>() - target_W_m_.head<2>()).norm() < 1.0 && e.v_W_mps.head<2>().norm() < 0.5) {
-          hold_W_m_ = target_W_m_;
-          return_phase_ = 2;
-        }
-      } else {  // land at home
-        hold_W_m_.z() = e.p_W_m.z();
-        enter(FcMode::kLand);
-        landed_since_s_ = -1.0;
-      }
+    case FcMode::kReturnHome:
+      v_sp = return_home_velocity_setpoint(e, dt);
       break;
-    }
     case FcMode::kLand: {
       const Eigen::Vector3d p_sp(hold_W_m_.x(), hold_W_m_.y(), e.p_W_m.z());
       v_sp = position_.velocity_setpoint(e.p_W_m, p_sp, l.default_speed_mps);

@@ -83,7 +83,7 @@ class FlightController {
   FcOutput step(double t_s);
   const FlightStatus& status() const { return status_; }
   const Eigen::Vector3d& home_W_m() const { return home_W_m_; }
-  // The current (or last) go-to leg.
+  // The current (or last) line followed: a go-to's leg, or the return home's home-bound leg.
   const GotoPathFollower& goto_path() const { return path_; }
 
  private:
@@ -95,7 +95,8 @@ class FlightController {
   Eigen::Vector3d brake_before_fence(const Eigen::Vector3d& p_W, const Eigen::Vector3d& v_sp) const;
   std::string target_problem(const Eigen::Vector3d& target, FcRefusal* why) const;
   Eigen::Vector3d goto_leg_start(const EstimatedState& e) const;
-  Eigen::Vector3d goto_velocity_setpoint(const Eigen::Vector3d& p_W, double dt_s);
+  Eigen::Vector3d goto_velocity_setpoint(const Eigen::Vector3d& p_W, double speed_mps, double dt_s);
+  Eigen::Vector3d return_home_velocity_setpoint(const EstimatedState& e, double dt_s);
 
   FcParams params_;
   StateEstimator estimator_;
@@ -113,6 +114,7 @@ class FlightController {
   double yaw_sp_rad_ = 0.0;
   double speed_mps_ = 5.0;
   int return_phase_ = 0;
+  Eigen::Vector3d return_start_W_m_ = Eigen::Vector3d::Zero();  // where the return home began
   double landed_since_s_ = -1.0;
   bool low_battery_returned_ = false;
 };
