@@ -1,4 +1,7 @@
-// CAN frame wire length and arbitration order (see frame_timing.hpp).
+// CAN frame wire length and arbitration order (see frame_timing.hpp). The exact length is
+// computed a byte at a time: a table-driven CRC-15 and a table-driven stuff-bit counter
+// (a five-equal-bits state machine stepped by whole bytes). frame_bits_reference.cpp holds
+// the bit-by-bit version the tests compare this with.
 #include "bridge/can/frame_timing.hpp"
 
 #include <algorithm>
@@ -7,36 +10,135 @@
 namespace a3::bridge {
 namespace {
 
-// Bits of a frame from SOF to the end of the data field, MSB first.
-class BitSequence {
+constexpr unsigned kFixedTailBits = 1 + 2 + 7 + 3;  // CRC delimiter, ACK slot+delimiter, EOF, IFS
+constexpr uint16_t kCrc15Polynomial = 0x4599;
+
+constexpr uint16_t crc15_bit(uint16_t crc, unsigned in) {
+  const unsigned top = (crc >> 14) & 1u;
+  crc = static_cast<uint16_t>((crc << 1) & 0x7FFF);
+  return (in ^ top) != 0 ? static_cast<uint16_t>(crc ^ kCrc15Polynomial) : crc;
+}
+
+// Entry i: the register after shifting eight zero bits through a register whose top eight
+// bits are i, the rest zero.
+constexpr std::array<uint16_t, 256> make_crc15_table() {
+  std::array<uint16_t, 256> table{};
+  for (unsigned i = 0; i < 256; ++i) {
+    uint16_t crc = static_cast<uint16_t>(i << 7);
+    for (int bit = 0; bit < 8; ++bit) crc = crc15_bit(crc, 0);
+    table[i] = crc;
+  }
+  return table;
+}
+constexpr std::array<uint16_t, 256> kCrc15Table = make_crc15_table();
+
+uint16_t crc15_byte(uint16_t crc, uint8_t byte) {
+  const unsigned index = ((crc >> 7) ^ byte) & 0xFFu;
+  return static_cast<uint16_t>(((crc << 8) & 0x7FFF) ^ kCrc15Table[index]);
+}
+
+// Stuffing state: the last bit's value (bit 2) and how many equal bits end with it, minus
+// one (bits 0-1; a run of five is stuffed at once, so 1..4).
+constexpr uint8_t stuff_step(uint8_t state, unsigned bit, unsigned& stuff_bits) {
+  unsigned last = state >> 2;
+  unsigned run = (state & 3u) + 1;
+  if (bit == last) {
+    ++run;
+  } else {
+    run = 1;
+    last = bit;
+  }
+  if (run == 5) {
+    // The stuff bit has the opposite value and starts the next run.
+    ++stuff_bits;
+    last = bit ^ 1u;
+    run = 1;
+  }
+  return static_cast<uint8_t>((last << 2) | (run - 1));
+}
+
+struct StuffEntry {
+  uint8_t next_state;
+  uint8_t stuff_bits;
+};
+constexpr std::array<std::array<StuffEntry, 256>, 8> make_stuff_table() {
+  std::array<std::array<StuffEntry, 256>, 8> table{};
+  for (unsigned state = 0; state < 8; ++state) {
+    for (unsigned byte = 0; byte < 256; ++byte) {
+      unsigned stuff = 0;
+      uint8_t s = static_cast<uint8_t>(state);
+      for (int i = 7; i >= 0; --i) s = stuff_step(s, (byte >> i) & 1u, stuff);
+      table[state][byte] = StuffEntry{s, static_cast<uint8_t>(stuff)};
+    }
+  }
+  return table;
+}
+constexpr auto kStuffTable = make_stuff_table();
+
+// Counts the stuff bits of a bit stream pushed in pieces of up to 56 bits, MSB first.
+class StuffCounter {
  public:
-  void push(uint32_t value, unsigned bits) {
-    for (unsigned i = bits; i-- > 0;) push_bit((value >> i) & 1u);
+  void push(uint64_t value, unsigned count) {
+    acc_ = (acc_ << count) | value;
+    pending_ += count;
+    while (pending_ >= 8) {
+      pending_ -= 8;
+      const StuffEntry& e = kStuffTable[state_][(acc_ >> pending_) & 0xFFu];
+      state_ = e.next_state;
+      stuff_bits_ += e.stuff_bits;
+    }
   }
-  void push_bit(unsigned bit) {
-    if (bit != 0) bytes_[count_ / 8] = static_cast<uint8_t>(bytes_[count_ / 8] | (0x80u >> (count_ % 8)));
-    ++count_;
+  unsigned finish() {
+    for (unsigned i = pending_; i-- > 0;) state_ = stuff_step(state_, (acc_ >> i) & 1u, stuff_bits_);
+    pending_ = 0;
+    return stuff_bits_;
   }
-  bool bit(unsigned i) const { return (bytes_[i / 8] & (0x80u >> (i % 8))) != 0; }
-  unsigned size() const { return count_; }
-  const uint8_t* data() const { return bytes_.data(); }
 
  private:
-  std::array<uint8_t, 20> bytes_{};  // at most 1+32+4+64+15 bits
-  unsigned count_ = 0;
+  uint64_t acc_ = 0;
+  unsigned pending_ = 0;
+  // Before SOF (a dominant 0): "last bit recessive", so SOF starts a run of one.
+  uint8_t state_ = 0b100;
+  unsigned stuff_bits_ = 0;
 };
 
-constexpr unsigned kFixedTailBits = 1 + 2 + 7 + 3;  // CRC delimiter, ACK slot+delimiter, EOF, IFS
+struct HeaderBits {
+  uint64_t value;  // SOF .. DLC, MSB first, right-aligned
+  unsigned count;
+};
+
+HeaderBits header_bits(const CanFrame& frame, unsigned dlc) {
+  const uint64_t rtr = frame.remote ? 1u : 0u;
+  if (frame.extended) {
+    // SOF, base ID (11), SRR=1, IDE=1, ID extension (18), RTR, r1, r0, DLC (4).
+    const uint64_t base = (frame.id >> 18) & 0x7FF;
+    const uint64_t extension = frame.id & 0x3FFFF;
+    return {(base << 27) | (1u << 26) | (1u << 25) | (extension << 7) | (rtr << 6) | dlc, 39};
+  }
+  // SOF, ID (11), RTR, IDE=0, r0, DLC (4).
+  return {(uint64_t{frame.id & 0x7FF} << 7) | (rtr << 6) | dlc, 19};
+}
+
+// CRC-15 of the header and data. The register starts at zero, so the header's leading zero
+// padding up to whole bytes leaves it unchanged.
+uint16_t frame_crc15(const HeaderBits& header, const CanFrame& frame, unsigned data_bytes) {
+  uint16_t crc = 0;
+  for (unsigned shift = (header.count + 7) / 8 * 8; shift > 0;) {
+    shift -= 8;
+    crc = crc15_byte(crc, static_cast<uint8_t>(header.value >> shift));
+  }
+  for (unsigned i = 0; i < data_bytes; ++i) crc = crc15_byte(crc, frame.data[i]);
+  return crc;
+}
 
 }  // namespace
 
 uint16_t can_crc15(const uint8_t* bits, unsigned bit_count) {
   uint16_t crc = 0;
-  for (unsigned i = 0; i < bit_count; ++i) {
-    const unsigned in = (bits[i / 8] >> (7 - i % 8)) & 1u;
-    const unsigned top = (crc >> 14) & 1u;
-    crc = static_cast<uint16_t>((crc << 1) & 0x7FFF);
-    if ((in ^ top) != 0) crc ^= 0x4599;
+  const unsigned whole_bytes = bit_count / 8;
+  for (unsigned i = 0; i < whole_bytes; ++i) crc = crc15_byte(crc, bits[i]);
+  for (unsigned i = whole_bytes * 8; i < bit_count; ++i) {
+    crc = crc15_bit(crc, (bits[i / 8] >> (7 - i % 8)) & 1u);
   }
   return crc;
 }
@@ -51,44 +153,12 @@ unsigned can_frame_bits(const CanFrame& frame, BitStuffing stuffing) {
   if (stuffing == BitStuffing::kWorstCase) {
     return stuffed_region + kFixedTailBits + (stuffed_region - 1) / 4;
   }
-  BitSequence bits;
-  bits.push_bit(0);  // SOF
-  if (frame.extended) {
-    bits.push(frame.id >> 18, 11);
-    bits.push_bit(1);  // SRR
-    bits.push_bit(1);  // IDE
-    bits.push(frame.id & 0x3FFFF, 18);
-    bits.push_bit(frame.remote ? 1 : 0);
-    bits.push(0, 2);  // r1, r0
-  } else {
-    bits.push(frame.id & 0x7FF, 11);
-    bits.push_bit(frame.remote ? 1 : 0);
-    bits.push(0, 2);  // IDE, r0
-  }
-  bits.push(dlc, 4);
-  for (unsigned i = 0; i < data_bytes; ++i) bits.push(frame.data[i], 8);
-  const uint16_t crc = can_crc15(bits.data(), bits.size());
-  bits.push(crc, 15);
-
-  unsigned stuff_bits = 0;
-  unsigned run = 0;
-  bool last = false;
-  for (unsigned i = 0; i < bits.size(); ++i) {
-    const bool b = bits.bit(i);
-    if (i > 0 && b == last) {
-      ++run;
-    } else {
-      run = 1;
-      last = b;
-    }
-    if (run == 5) {
-      // The stuff bit has the opposite value and starts the next run.
-      ++stuff_bits;
-      last = !b;
-      run = 1;
-    }
-  }
-  return bits.size() + stuff_bits + kFixedTailBits;
+  const HeaderBits header = header_bits(frame, dlc);
+  StuffCounter stuff;
+  stuff.push(header.value, header.count);
+  for (unsigned i = 0; i < data_bytes; ++i) stuff.push(frame.data[i], 8);
+  stuff.push(frame_crc15(header, frame, data_bytes), 15);
+  return stuffed_region + stuff.finish() + kFixedTailBits;
 }
 
 uint32_t can_arbitration_key(const CanFrame& frame) {
