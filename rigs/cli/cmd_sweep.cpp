@@ -1,16 +1,19 @@
 // `a3rig sweep`: a grid of episodes (scenarios × agents × think times × slices × seeds), each
 // run as its own `a3rig run`, in parallel, resumable and shardable, with results.csv,
 // aggregate.csv and latency-sensitivity plots; `--plot-only DIR` re-aggregates (and merges
-// shards) from the results files alone.
+// shards) from the results files alone; `--slurm` submits it as a Slurm job array and a merge job.
 #include <CLI/CLI.hpp>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "rigs/cli/command_registry.hpp"
 #include "rigs/cli/flag_checks.hpp"
@@ -20,6 +23,7 @@
 #include "rigs/core/shared_dir.hpp"
 #include "rigs/sweep/cell_result.hpp"
 #include "rigs/sweep/cell_runner.hpp"
+#include "rigs/sweep/slurm_submit.hpp"
 #include "rigs/sweep/sweep_report.hpp"
 #include "rigs/sweep/sweep_runner.hpp"
 
@@ -44,7 +48,70 @@ struct SweepArgs {
   std::string plot_only;
   std::string llm_base_url;
   std::string llm_model;
+  int expect_shards = 0;
+  // Slurm
+  bool slurm = false;
+  bool slurm_dry_run = false;
+  std::string partition;
+  std::string time_limit;
+  int array_parallelism = 0;
+  int slurm_shards = 0;  // 0: min(cells, 64)
+  int cpus_per_task = 0;  // 0: --jobs when given, else 1
+  std::vector<std::string> sbatch_args;
 };
+
+// The flags only a Slurm submission takes; they are not passed on to the array's tasks.
+const std::vector<std::string>& slurm_flags() {
+  static const std::vector<std::string> names = {"--slurm", "--slurm-dry-run", "--partition", "--time",
+                                                 "--array-parallelism", "--slurm-shards", "--cpus-per-task",
+                                                 "--sbatch-arg"};
+  return names;
+}
+
+bool given(const CLI::App& cmd, const std::string& name) { return cmd.get_option(name)->count() > 0; }
+
+// Flag combinations that cannot mean what the user wants, named.
+void check_flag_combinations(const SweepArgs& args, const CLI::App& cmd) {
+  const bool slurm = args.slurm || args.slurm_dry_run;
+  if (given(cmd, "--expect-shards") && args.plot_only.empty()) {
+    throw std::invalid_argument("--expect-shards goes with --plot-only DIR");
+  }
+  if (!slurm) {
+    for (const auto& name : slurm_flags()) {
+      if (given(cmd, name)) throw std::invalid_argument(name + " goes with --slurm (or --slurm-dry-run)");
+    }
+    return;
+  }
+  for (const std::string name : {"--shard", "--dry-run", "--plot-only"}) {
+    if (given(cmd, name)) {
+      throw std::invalid_argument(name + " cannot go with --slurm" +
+                                  (name == "--shard" ? ": the job array gives each task its shard" :
+                                   name == "--dry-run" ? ": --slurm-dry-run prints the scripts" : ""));
+    }
+  }
+}
+
+// The flags the user gave, in the order of the help, minus the Slurm ones: the array tasks'
+// command line. --jobs and --out are added when not given, so every task uses its cpus and
+// the folder the scripts are in.
+std::vector<std::string> task_args(const SweepArgs& args, const CLI::App& cmd, int cpus_per_task) {
+  std::vector<std::string> words;
+  for (const CLI::Option* opt : cmd.get_options()) {
+    const std::string name = opt->get_name();
+    if (opt->count() == 0 || name == "--help" ||
+        std::find(slurm_flags().begin(), slurm_flags().end(), name) != slurm_flags().end()) {
+      continue;
+    }
+    if (opt->get_expected_max() == 0) {
+      words.push_back(name);
+      continue;
+    }
+    for (const auto& value : opt->results()) words.insert(words.end(), {name, value});
+  }
+  if (!given(cmd, "--jobs")) words.insert(words.end(), {"--jobs", std::to_string(cpus_per_task)});
+  if (!given(cmd, "--out")) words.insert(words.end(), {"--out", args.out});
+  return words;
+}
 
 std::string all_builtin_scenarios() {
   std::string names;
@@ -59,16 +126,98 @@ void print_report(const sweep::SweepReport& report) {
   if (!report.plots.problem.empty()) std::printf("plots:     not all drawn: %s\n", report.plots.problem.c_str());
 }
 
-int plot_only(const std::filesystem::path& dir) {
+// --expect-shards N: the shards without a results file, named with the way to run them again.
+bool report_missing_shards(const std::filesystem::path& dir, int expect_shards) {
+  const std::vector<int> missing = sweep::missing_shards(dir, expect_shards);
+  if (missing.empty()) return false;
+  std::string list;
+  for (const int i : missing) list += (list.empty() ? "" : ",") + std::to_string(i);
+  std::printf("missing:   %zu of %d shards left no results file: %s; run them again (on Slurm: sbatch --array=%s "
+              "%s, then the merge job again; see docs/slurm.md)\n",
+              missing.size(), expect_shards, list.c_str(), list.c_str(),
+              sweep::shell_quote(sweep::array_script_path(dir).string()).c_str());
+  return true;
+}
+
+int plot_only(const std::filesystem::path& dir, int expect_shards) {
+  const bool shards_missing = expect_shards > 0 && report_missing_shards(dir, expect_shards);
+  if (shards_missing && sweep::result_files(dir).empty()) return 1;
   const sweep::MergedReport merged = sweep::reaggregate(dir);
   for (const auto& f : merged.merged_files) std::printf("read:      %s\n", f.c_str());
   std::printf("results:   %s (%zu cells)\n", (dir / "results.csv").c_str(), merged.rows);
   print_report(merged.report);
+  if (expect_shards == 0) return 0;
+  const auto rows = sweep::read_results_csv(dir / "results.csv");
+  const auto incomplete = std::count_if(rows.begin(), rows.end(), [](const auto& r) { return !r.has_episode; });
+  if (incomplete > 0) std::printf("failed:    %td cells without a complete episode (their status in results.csv)\n", incomplete);
+  return shards_missing || incomplete > 0 ? 1 : 0;
+}
+
+void print_slurm_dry_run(const sweep::SlurmJobOptions& job) {
+  std::printf("# %s\n%s\n# %s\n%s\n", sweep::array_script_path(job.out_dir).c_str(), sweep::array_script(job).c_str(),
+              sweep::merge_script_path(job.out_dir).c_str(), sweep::merge_script(job).c_str());
+  std::printf("# submitted with: sbatch --parsable %s, then sbatch --parsable --dependency=afterany:<array job id> %s\n",
+              sweep::shell_quote(sweep::array_script_path(job.out_dir).string()).c_str(),
+              sweep::shell_quote(sweep::merge_script_path(job.out_dir).string()).c_str());
+}
+
+int submit_to_slurm(const sweep::SlurmJobOptions& job) {
+  sweep::write_slurm_scripts(job);
+  sweep::ProcessCommandRunner sbatch;
+  sweep::SlurmSubmission ids;
+  try {
+    ids = sweep::submit_slurm_jobs(job.out_dir, sbatch);
+  } catch (const std::runtime_error& e) {
+    std::fprintf(stderr, "a3rig sweep --slurm: %s\n", e.what());
+    return 1;
+  }
+  const std::string both = ids.array_job_id + "," + ids.merge_job_id;
+  std::printf("slurm:     array job %s (%d shards), merge job %s (runs after every task has ended)\n",
+              ids.array_job_id.c_str(), job.shards, ids.merge_job_id.c_str());
+  std::printf("scripts:   %s, %s\n", sweep::array_script_path(job.out_dir).c_str(),
+              sweep::merge_script_path(job.out_dir).c_str());
+  std::printf("logs:      %s/\n", (sweep::slurm_dir(job.out_dir) / "logs").c_str());
+  std::printf("follow:    squeue -j %s; sacct -j %s; results in %s/results.csv when job %s has ended\n", both.c_str(),
+              both.c_str(), job.out_dir.c_str(), ids.merge_job_id.c_str());
   return 0;
 }
 
-int run(const SweepArgs& args) {
-  if (!args.plot_only.empty()) return plot_only(args.plot_only);
+int run_on_slurm(const SweepArgs& args, const CLI::App& cmd, std::size_t cells, const std::string& a3rig_exe) {
+  sweep::SlurmJobOptions job;
+  job.shards = args.slurm_shards > 0 ? args.slurm_shards : static_cast<int>(std::min<std::size_t>(cells, 64));
+  if (static_cast<std::size_t>(job.shards) > cells) {
+    throw std::invalid_argument("--slurm-shards " + std::to_string(job.shards) + ": more shards than the sweep's " +
+                                std::to_string(cells) + " cells");
+  }
+  job.cpus_per_task = args.cpus_per_task > 0 ? args.cpus_per_task : (given(cmd, "--jobs") ? args.jobs : 1);
+  job.a3rig_exe = a3rig_exe;
+  job.sweep_args = task_args(args, cmd, job.cpus_per_task);
+  job.work_dir = std::filesystem::current_path();
+  job.out_dir = std::filesystem::absolute(args.out).lexically_normal();
+  if (const auto shared = default_shared_dir(); std::filesystem::exists(shared)) {
+    job.shared_dir = std::filesystem::absolute(shared).lexically_normal();
+  }
+  job.array_parallelism = args.array_parallelism;
+  job.partition = args.partition;
+  job.time_limit = args.time_limit;
+  job.sbatch_args = args.sbatch_args;
+  if (args.slurm_dry_run) {
+    print_slurm_dry_run(job);
+    return 0;
+  }
+  return submit_to_slurm(job);
+}
+
+std::string this_program() {
+  char exe[4096];
+  const ssize_t length = ::readlink("/proc/self/exe", exe, sizeof exe - 1);
+  if (length <= 0) throw std::runtime_error("cannot find the a3rig program (/proc/self/exe)");
+  return std::string(exe, static_cast<std::size_t>(length));
+}
+
+int run(const SweepArgs& args, const CLI::App& cmd) {
+  check_flag_combinations(args, cmd);
+  if (!args.plot_only.empty()) return plot_only(args.plot_only, args.expect_shards);
   const sweep::SweepAxes axes = sweep::make_axes(args.scenarios.empty() ? all_builtin_scenarios() : args.scenarios,
                                                  args.agents, args.think_times, args.slices, args.seeds);
   const sweep::Shard shard = sweep::parse_shard(args.shard);
@@ -81,13 +230,11 @@ int run(const SweepArgs& args) {
     }
   }
   const std::vector<sweep::SweepCell> grid = sweep::expand_grid(axes);
+  if (args.slurm || args.slurm_dry_run) return run_on_slurm(args, cmd, grid.size(), this_program());
   const std::vector<sweep::SweepCell> mine = sweep::cells_of_shard(grid, shard);
 
   sweep::ChildProcessOptions child;
-  char exe[4096];
-  const ssize_t length = ::readlink("/proc/self/exe", exe, sizeof exe - 1);
-  if (length <= 0) throw std::runtime_error("cannot find the a3rig program (/proc/self/exe)");
-  child.a3rig_exe = std::string(exe, static_cast<std::size_t>(length));
+  child.a3rig_exe = this_program();
   child.runtime = args.runtime;
   child.real_time_factor = args.real_time_factor;
   child.cell_timeout_s = args.cell_timeout_s >= 0.0 ? args.cell_timeout_s : (args.runtime == "virtual" ? 900.0 : 0.0);
@@ -205,7 +352,30 @@ A3_REGISTER_COMMAND("15-sweep", [](CLI::App& app) {
                   "aggregate.csv and the plots again");
   cmd->add_option("--llm-base-url", args->llm_base_url, "--agents llm: passed to every `a3rig run`");
   cmd->add_option("--llm-model", args->llm_model, "--agents llm: passed to every `a3rig run`");
-  cmd->callback([args] { command_exit_status() = run(*args); });
+  cmd->add_option("--expect-shards", args->expect_shards,
+                  "N, with --plot-only: also check that DIR holds the results of every shard I/N and that every "
+                  "cell has a complete episode; exit 1 naming the missing shards and counting the failed cells "
+                  "(the Slurm merge job runs this)")
+      ->check(a3::rigs::between(1, 100000));
+  cmd->add_flag("--slurm", args->slurm,
+                "submit the sweep to Slurm instead of running it: writes OUT/slurm/array.sbatch (a job array, task I "
+                "runs this sweep's flags with --shard I/N) and OUT/slurm/merge.sbatch (--plot-only OUT "
+                "--expect-shards N), submits them with sbatch (the merge with --dependency=afterany on the array) "
+                "and prints the job ids; OUT, this program and the shared data must be visible from the compute "
+                "nodes at the same paths (docs/slurm.md)");
+  cmd->add_flag("--slurm-dry-run", args->slurm_dry_run, "print the two Slurm scripts --slurm would submit; write and submit nothing");
+  cmd->add_option("--slurm-shards", args->slurm_shards, "Slurm: array tasks N, one shard each (default: the number of cells, at most 64)")
+      ->check(a3::rigs::between(1, 1000));
+  cmd->add_option("--array-parallelism", args->array_parallelism, "Slurm: at most K array tasks at once (--array=0-(N-1)%K; default no limit)")
+      ->check(a3::rigs::between(1, 1000));
+  cmd->add_option("--partition", args->partition, "Slurm: the partition of both jobs (default the cluster's)");
+  cmd->add_option("--time", args->time_limit, "Slurm: time limit per array task and for the merge, as sbatch --time takes it, e.g. 2:00:00 (default the partition's)");
+  cmd->add_option("--cpus-per-task", args->cpus_per_task,
+                  "Slurm: cpus per array task; each task runs that many episodes at once (default --jobs when given, else 1)")
+      ->check(a3::rigs::between(1, 1024));
+  cmd->add_option("--sbatch-arg", args->sbatch_args,
+                  "Slurm: one more sbatch option for both jobs, e.g. --sbatch-arg=--account=proj --sbatch-arg=--mem=4G (repeatable)");
+  cmd->callback([args, cmd] { command_exit_status() = run(*args, *cmd); });
 });
 
 }  // namespace a3::rigs

@@ -17,6 +17,14 @@ std::filesystem::path results_path(const std::filesystem::path& out_dir, const S
   return out_dir / ("results.shard-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count) + ".csv");
 }
 
+std::vector<int> missing_shards(const std::filesystem::path& out_dir, int count) {
+  std::vector<int> missing;
+  for (int i = 0; i < count; ++i) {
+    if (!std::filesystem::exists(results_path(out_dir, Shard{i, count}))) missing.push_back(i);
+  }
+  return missing;
+}
+
 SweepRunSummary run_sweep(const std::vector<SweepCell>& grid, const SweepRunOptions& options, CellRunner& runner,
                           const ProgressCallback& progress, const std::atomic<bool>& stop) {
   if (options.jobs < 1) throw std::invalid_argument("--jobs " + std::to_string(options.jobs) + ": must be at least 1");

@@ -36,6 +36,8 @@ using ProgressCallback = std::function<void(const ProgressCounts& counts)>;
 
 // The results file of a shard: results.csv for 0/1, else results.shard-I-of-N.csv.
 std::filesystem::path results_path(const std::filesystem::path& out_dir, const Shard& shard);
+// The shards I of I/count whose results file is not in out_dir (a task that never ran or was killed).
+std::vector<int> missing_shards(const std::filesystem::path& out_dir, int count);
 
 SweepRunSummary run_sweep(const std::vector<SweepCell>& grid, const SweepRunOptions& options, CellRunner& runner,
                           const ProgressCallback& progress, const std::atomic<bool>& stop);
