@@ -145,15 +145,6 @@ void CvodeIntegrator::restart() {
   need_restart_ = false;
 }
 
-void CvodeIntegrator::settle_on_ground() {
-  // Inelastic contact with friction: the vehicle stops, level, keeping its heading.
-  const double yaw = roll_pitch_yaw_rad(state_.q_WB).z();
-  state_.p_W_m.z() = 0.0;
-  state_.v_W_mps.setZero();
-  state_.w_B_radps.setZero();
-  state_.q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
-}
-
 void CvodeIntegrator::integrate(double t_end_s, const RotorSpeeds& command_radps) {
   if (command_radps != command_) {
     command_ = command_radps;

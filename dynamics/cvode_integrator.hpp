@@ -42,7 +42,6 @@ class CvodeIntegrator final : public Integrator {
   void integrate(double t_end_s, const RotorSpeeds& command_radps) override;
   void restart();
   Stats since_restart() const;
-  void settle_on_ground();
 
   static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user);
   static int roots(sunrealtype t, N_Vector y, sunrealtype* g, void* user);

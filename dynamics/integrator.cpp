@@ -1,11 +1,14 @@
-// The integrator interface and the bookkeeping both integrators share.
+// The integrator interface and the bookkeeping the integrators share.
 #include "dynamics/integrator.hpp"
+
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <stdexcept>
 
 #include "dynamics/cvode_integrator.hpp"
 #include "dynamics/ode_integrator.hpp"
+#include "dynamics/rk4_integrator.hpp"
 
 namespace a3::dynamics {
 
@@ -75,16 +78,36 @@ void Integrator::empty_battery(double t_s) {
   events_.push_back({DynamicsEvent::Kind::kBatteryEmpty, t_s, state_.p_W_m, state_.v_W_mps.z()});
 }
 
+void Integrator::settle_on_ground() {
+  const double yaw = roll_pitch_yaw_rad(state_.q_WB).z();
+  state_.p_W_m.z() = 0.0;
+  state_.v_W_mps.setZero();
+  state_.w_B_radps.setZero();
+  state_.q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
+}
+
 IntegratorKind parse_integrator_kind(const std::string& name) {
+  if (name == "rk4") return IntegratorKind::kRk4;
   if (name == "cvode") return IntegratorKind::kCvode;
   if (name == "ode") return IntegratorKind::kOde;
-  throw std::invalid_argument("unknown integrator '" + name + "' (known: cvode, ode)");
+  throw std::invalid_argument("unknown integrator '" + name + "' (known: rk4, cvode, ode)");
+}
+
+const char* to_string(IntegratorKind kind) {
+  switch (kind) {
+    case IntegratorKind::kRk4: return "rk4";
+    case IntegratorKind::kCvode: return "cvode";
+    case IntegratorKind::kOde: return "ode";
+  }
+  return "unknown";
 }
 
 std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const QuadrotorModel& model,
                                             WindField& wind, const IntegratorOptions& options) {
-  if (kind == IntegratorKind::kOde) {
-    return std::make_unique<OdeIntegrator>(model, wind, options.ode_step_s);
+  switch (kind) {
+    case IntegratorKind::kRk4: return std::make_unique<Rk4Integrator>(model, wind, options.rk4_max_step_s);
+    case IntegratorKind::kOde: return std::make_unique<OdeIntegrator>(model, wind, options.ode_step_s);
+    case IntegratorKind::kCvode: break;
   }
   return std::make_unique<CvodeIntegrator>(model, wind, options.relative_tolerance);
 }

@@ -1,4 +1,4 @@
-// One interface over the two integrators of the vehicle model (CVODE, Open Dynamics Engine):
+// One interface over the integrators of the vehicle model (fixed-step RK4, CVODE, Open Dynamics Engine):
 // advance the state to a time with the rotor commands held constant (zero-order hold), report
 // ground contact, crashes and an empty battery as events.
 #pragma once
@@ -61,6 +61,8 @@ class Integrator {
   void liftoff(double t_s, const Eigen::Vector3d& p_W_m);
   void empty_battery(double t_s);
   RotorSpeeds effective_command(const RotorSpeeds& command) const;
+  // Inelastic contact with friction: state_ stops on the floor, level, keeping its heading.
+  void settle_on_ground();
 
   const QuadrotorModel& model_;
   WindField& wind_;
@@ -72,11 +74,14 @@ class Integrator {
   std::vector<DynamicsEvent> events_;
 };
 
-enum class IntegratorKind { kCvode, kOde };
-// "cvode" | "ode"; throws std::invalid_argument otherwise.
+enum class IntegratorKind { kRk4, kCvode, kOde };
+// "rk4" | "cvode" | "ode"; throws std::invalid_argument otherwise.
 IntegratorKind parse_integrator_kind(const std::string& name);
+const char* to_string(IntegratorKind kind);
 
 struct IntegratorOptions {
+  // RK4: the longest step; 0 takes 0.4 x the motor's fastest time constant (rk4_integrator.hpp)
+  double rk4_max_step_s = 0.0;
   // CVODE
   double relative_tolerance = 1e-8;
   // ODE

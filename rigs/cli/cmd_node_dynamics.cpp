@@ -123,8 +123,8 @@ A3_REGISTER_COMMAND("50-node-dynamics", [](CLI::App& app) {
                   "α³-Bench episode or initial_state JSON: wind, payloads and start pose")
       ->check(CLI::ExistingFile);
   cmd->add_flag("--on-ground", args->on_ground, "start on the ground below the scenario's pose");
-  cmd->add_option("--integrator", args->integrator, "cvode (default) or ode")
-      ->check(CLI::IsMember({"cvode", "ode"}));
+  cmd->add_option("--integrator", args->integrator, "cvode (default, the accuracy reference), rk4 (fixed-step Runge-Kutta) or ode")
+      ->check(CLI::IsMember({"rk4", "cvode", "ode"}));
   cmd->add_option("--rate-hz", args->rate_hz, "state publish rate (default 100)")->check(a3::rigs::between(1.0, 10000.0));
   cmd->add_option("--rtf", args->rtf, "real-time factor: simulated seconds per wall second (default 1)")
       ->check(a3::rigs::positive());

@@ -1,11 +1,15 @@
-// The two integrators on the same model: they agree on a 10 s flight, and each reproduces the
-// physics a hand calculation predicts (hover, free fall, yaw torque, energy drain).
+// The integrators on the same model: ODE and RK4 agree with CVODE (the accuracy reference) on a
+// 10 s open-loop manoeuvre, RK4 also after 60 s of the closed-loop patrol flight, and each
+// reproduces the physics a hand calculation predicts (hover, free fall, yaw torque, energy drain).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 
+#include "bench/dynamics/flight_controller.hpp"
 #include "dynamics/integrator.hpp"
+#include "dynamics/rk4_integrator.hpp"
 #include "tests/dynamics/manoeuvre.hpp"
 
 namespace a3::dynamics {
@@ -47,28 +51,125 @@ class Integrators : public ::testing::TestWithParam<IntegratorKind> {
   QuadrotorModel model_{default_vehicle_params()};
 };
 
-TEST(IntegratorAgreement, CvodeAndOdeAgreeAfterTenSecondsOfFlight) {
+double position_difference_m(const VehicleState& a, const VehicleState& b) { return (a.p_W_m - b.p_W_m).norm(); }
+double attitude_difference_deg(const VehicleState& a, const VehicleState& b) {
+  return attitude_difference_rad(a.q_WB, b.q_WB) * 180.0 / M_PI;
+}
+
+// The 10 s open-loop manoeuvre (manoeuvre.hpp) with CVODE, the accuracy reference, and another
+// integrator: they agree to 1 cm and 0.5 deg.
+void expect_manoeuvre_agrees_with_cvode(IntegratorKind kind) {
   const QuadrotorModel model(default_vehicle_params());
   const VehicleState start = hovering_at(model, 50.0);
   auto command = [&](double t, const VehicleState&) { return a3::test::manoeuvre_command(model, t); };
   IntegratorOptions options;
   options.ode_step_s = 0.0005;
   const Flight cvode = fly(IntegratorKind::kCvode, model, start, 10.0, command, options);
-  const Flight ode = fly(IntegratorKind::kOde, model, start, 10.0, command, options);
+  const Flight other = fly(kind, model, start, 10.0, command, options);
   const VehicleState& a = cvode.states.back();
-  const VehicleState& b = ode.states.back();
+  const VehicleState& b = other.states.back();
   // The manoeuvre really moved and turned the vehicle...
   EXPECT_GT((a.p_W_m - start.p_W_m).norm(), 5.0);
   EXPECT_GT(attitude_difference_rad(a.q_WB, start.q_WB), 0.1);
   // ...and the two integrators agree: 1 cm, 0.5°.
   std::cout << "after 10 s: travelled " << (a.p_W_m - start.p_W_m).norm() << " m, turned "
-            << attitude_difference_rad(a.q_WB, start.q_WB) * 180 / M_PI << " deg; CVODE vs ODE: "
-            << (a.p_W_m - b.p_W_m).norm() * 1000 << " mm, "
-            << attitude_difference_rad(a.q_WB, b.q_WB) * 180 / M_PI << " deg\n";
-  EXPECT_LT((a.p_W_m - b.p_W_m).norm(), 0.01) << "cvode " << a.p_W_m.transpose() << " ode " << b.p_W_m.transpose();
-  EXPECT_LT(attitude_difference_rad(a.q_WB, b.q_WB) * 180.0 / M_PI, 0.5);
+            << attitude_difference_rad(a.q_WB, start.q_WB) * 180 / M_PI << " deg; CVODE vs " << to_string(kind)
+            << ": " << position_difference_m(a, b) * 1000 << " mm, " << attitude_difference_deg(a, b) << " deg\n";
+  EXPECT_LT(position_difference_m(a, b), 0.01) << "cvode " << a.p_W_m.transpose() << " " << to_string(kind) << " "
+                                               << b.p_W_m.transpose();
+  EXPECT_LT(attitude_difference_deg(a, b), 0.5);
   EXPECT_TRUE(cvode.events.empty());
-  EXPECT_TRUE(ode.events.empty());
+  EXPECT_TRUE(other.events.empty());
+}
+
+TEST(IntegratorAgreement, CvodeAndOdeAgreeAfterTenSecondsOfFlight) {
+  expect_manoeuvre_agrees_with_cvode(IntegratorKind::kOde);
+}
+
+TEST(IntegratorAgreement, CvodeAndRk4AgreeAfterTenSecondsOfFlight) {
+  expect_manoeuvre_agrees_with_cvode(IntegratorKind::kRk4);
+}
+
+// The benchmarks' closed-loop patrol flight (bench/dynamics/flight_controller.hpp): take-off
+// from the ground, legs, turns and climbs, a command that changes every 10 ms computed from the
+// state, as the controller node does half a period after each step.
+Flight fly_patrol(IntegratorKind kind, const QuadrotorModel& model, double duration_s, bool windy) {
+  const Eigen::Vector3d mean_wind = windy ? wind_from_report(8.0, 240.0) : Eigen::Vector3d::Zero();
+  WindField wind(mean_wind, TurbulenceParams{windy}, 42);
+  auto integrator = make_integrator(kind, model, wind);
+  integrator->reset(VehicleState{}, 0.0);
+  bench::FlightController controller(model.params(), bench::patrol_plan(duration_s));
+  Flight run;
+  const int steps = static_cast<int>(std::lround(duration_s / kPeriod_s));
+  for (int k = 0; k < steps; ++k) {
+    const auto throttle =
+        controller.throttle(k * kPeriod_s + 0.5 * kPeriod_s, bench::input_of(integrator->state(), integrator->on_ground()));
+    RotorSpeeds command;
+    for (int i = 0; i < 4; ++i) command[i] = model.throttle_to_speed_radps(throttle[i]);
+    integrator->advance_to((k + 1) * kPeriod_s, command);
+    run.states.push_back(integrator->state());
+    for (auto& e : integrator->take_events()) run.events.push_back(e);
+  }
+  return run;
+}
+
+void expect_patrol_agrees_with_cvode(IntegratorKind kind, bool windy) {
+  const QuadrotorModel model(default_vehicle_params());
+  const Flight cvode = fly_patrol(IntegratorKind::kCvode, model, 60.0, windy);
+  const Flight other = fly_patrol(kind, model, 60.0, windy);
+  double travelled_m = 0.0, worst_m = 0.0, worst_deg = 0.0;
+  for (std::size_t k = 0; k < cvode.states.size(); ++k) {
+    if (k > 0) travelled_m += position_difference_m(cvode.states[k], cvode.states[k - 1]);
+    worst_m = std::max(worst_m, position_difference_m(cvode.states[k], other.states[k]));
+    worst_deg = std::max(worst_deg, attitude_difference_deg(cvode.states[k], other.states[k]));
+  }
+  const VehicleState& a = cvode.states.back();
+  const VehicleState& b = other.states.back();
+  std::cout << "patrol, 60 s" << (windy ? ", 8 m/s wind + turbulence" : ", calm") << ": travelled " << travelled_m
+            << " m; CVODE vs " << to_string(kind) << " at 60 s: " << position_difference_m(a, b) * 1000 << " mm, "
+            << attitude_difference_deg(a, b) << " deg (worst over the flight " << worst_m * 1000 << " mm, "
+            << worst_deg << " deg)\n";
+  EXPECT_GT(travelled_m, 150.0);  // took off, flew legs and turns
+  EXPECT_GT(a.p_W_m.z(), 20.0);
+  EXPECT_LT(position_difference_m(a, b), 0.01);
+  EXPECT_LT(attitude_difference_deg(a, b), 0.5);
+  // Thrust hovers around the weight on the ground before take-off (more so with vertical gusts):
+  // contact events may come in a burst, but the burst ends at the same time, without a crash.
+  for (const Flight* f : {&cvode, &other}) {
+    ASSERT_FALSE(f->events.empty());
+    EXPECT_EQ(f->events.front().kind, DynamicsEvent::Kind::kLiftoff);
+    for (const auto& e : f->events) EXPECT_NE(e.kind, DynamicsEvent::Kind::kCrash);
+  }
+  EXPECT_NEAR(other.events.back().time_s, cvode.events.back().time_s, 0.02);
+}
+
+TEST(IntegratorAgreement, CvodeAndRk4AgreeAfterSixtySecondsOfThePatrolFlight) {
+  expect_patrol_agrees_with_cvode(IntegratorKind::kRk4, false);
+}
+
+TEST(IntegratorAgreement, CvodeAndRk4AgreeAfterSixtySecondsOfThePatrolFlightInTurbulence) {
+  expect_patrol_agrees_with_cvode(IntegratorKind::kRk4, true);
+}
+
+TEST(IntegratorAgreement, Rk4LandsExactlyOnTheRequestedTimes) {
+  const QuadrotorModel model(default_vehicle_params());
+  WindField wind(Eigen::Vector3d::Zero(), TurbulenceParams{false}, 1);
+  Rk4Integrator rk4(model, wind, 0.0);
+  EXPECT_DOUBLE_EQ(rk4.max_step_s(), 0.4 * 0.0125);  // the Iris' motor lag up
+  rk4.reset(hovering_at(model, 10.0), 0.0);
+  const RotorSpeeds hover{model.hover_speed_radps(), model.hover_speed_radps(), model.hover_speed_radps(),
+                          model.hover_speed_radps()};
+  // 4 ms (the rig's 250 Hz): one step; 10 ms: two of 5 ms; 3.3 ms then 7 ms: one, then two.
+  rk4.advance_to(0.004, hover);
+  EXPECT_EQ(rk4.time_s(), 0.004);
+  EXPECT_EQ(rk4.stats().steps, 1);
+  rk4.advance_to(0.014, hover);
+  EXPECT_EQ(rk4.time_s(), 0.014);
+  EXPECT_EQ(rk4.stats().steps, 3);
+  for (int k = 1; k <= 1000; ++k) rk4.advance_to(0.014 + k * 0.0033, hover);
+  EXPECT_EQ(rk4.time_s(), 0.014 + 1000 * 0.0033);
+  EXPECT_EQ(rk4.stats().steps, 1003);
+  EXPECT_EQ(rk4.stats().rhs_evaluations, 4 * 1003);
 }
 
 TEST_P(Integrators, HoverCommandHoldsAltitude) {
@@ -226,9 +327,9 @@ TEST_P(Integrators, NoThrustFromAnEmptyBattery) {
   EXPECT_LT(run.states.back().p_W_m.z(), 98.0);  // falling
 }
 
-INSTANTIATE_TEST_SUITE_P(BothIntegrators, Integrators,
-                         ::testing::Values(IntegratorKind::kCvode, IntegratorKind::kOde),
-                         [](const auto& info) { return info.param == IntegratorKind::kCvode ? "cvode" : "ode"; });
+INSTANTIATE_TEST_SUITE_P(EveryIntegrator, Integrators,
+                         ::testing::Values(IntegratorKind::kRk4, IntegratorKind::kCvode, IntegratorKind::kOde),
+                         [](const auto& info) { return std::string(to_string(info.param)); });
 
 }  // namespace
 }  // namespace a3::dynamics
