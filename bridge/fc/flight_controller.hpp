@@ -1,8 +1,9 @@
 // The flight controller's logic, independent of how sensors and commands reach it: modes
-// (disarmed, takeoff, hold, go-to as path following, land, return-to-home, emergency), command checks, failsafes
-// (command-link loss: hold, then return; low battery: return, then land; geofence and altitude
-// envelope: refuse targets outside, brake before an edge, return if pushed outside), and the
-// cascaded control loops down to four rotor throttles. The fc node wires it to CAN.
+// (disarmed, takeoff, hold, go-to as path following, land, return-to-home following its line
+// home, emergency), command checks, failsafes (command-link loss: hold, then return; low
+// battery: return, then land; geofence and altitude envelope: refuse targets outside, brake
+// before an edge, return if pushed outside), and the cascaded control loops down to four rotor
+// throttles. The fc node wires it to CAN.
 #pragma once
 
 #include <Eigen/Core>
