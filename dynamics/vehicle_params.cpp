@@ -114,25 +114,6 @@ VehicleParams airframe_by_name_or_path(const std::string& name_or_path) {
   return load_vehicle_params(name_or_path);
 }
 
-std::vector<Payload> payloads_from_json(const nlohmann::json& payloads, const std::string& where) {
-  std::vector<Payload> out;
-  if (payloads.is_null()) return out;
-  if (!payloads.is_array()) throw InputError(where + ": payloads must be an array");
-  for (std::size_t i = 0; i < payloads.size(); ++i) {
-    const std::string w = where + "/" + std::to_string(i);
-    const auto& item = payloads[i];
-    if (!item.is_object()) throw InputError(w + ": a payload must be an object");
-    Payload p;
-    p.id = item.contains("id") && item["id"].is_string() ? item["id"].get<std::string>()
-                                                          : "payload" + std::to_string(i);
-    p.mass_kg = non_negative(item, "mass_kg", 0.0, w);
-    p.drag_cdA_m2 = non_negative(item, "drag_cdA", 0.0, w);
-    p.power_W = non_negative(item, "power_W", 0.0, w);
-    out.push_back(std::move(p));
-  }
-  return out;
-}
-
 VehicleParams with_payloads(VehicleParams params, const std::vector<Payload>& payloads) {
   constexpr double kPayloadOffset_m = 0.1;
   for (const Payload& p : payloads) {

@@ -1,7 +1,8 @@
 // Vehicle parameters: airframe, rotors, aerodynamics, battery, ground contact. Read from a JSON
-// airframe file (dynamics/airframes/*.json: the 3DR Iris, the default, and a heavy-lift class
-// for heavy payloads, both compiled in), then
-// payloads from a scenario add mass, drag area and electrical load.
+// airframe file (dynamics' own format: dynamics/airframes/*.json, the 3DR Iris, the default,
+// and a heavy-lift class for heavy payloads, both compiled in), then typed payloads add mass,
+// drag area and electrical load (the scenario's uav.payloads are parsed outside dynamics/, by
+// rigs/core/uav_payloads.hpp).
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -81,9 +82,6 @@ VehicleParams default_vehicle_params();
 // A built-in airframe by name ("iris", "heavy-lift") or an airframe JSON file by path.
 VehicleParams airframe_by_name_or_path(const std::string& name_or_path);
 
-// Payloads as the α³-Bench corpus writes them (`uav.payloads[]` with mass_kg, drag_cdA,
-// power_W); `where` names the source in errors.
-std::vector<Payload> payloads_from_json(const nlohmann::json& payloads, const std::string& where);
 // The params with the payloads' mass, drag area and power added. A payload is carried at the
 // centre of mass; its inertia is that of a point mass 0.1 m below it (roll and pitch).
 VehicleParams with_payloads(VehicleParams params, const std::vector<Payload>& payloads);

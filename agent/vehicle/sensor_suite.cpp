@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <stdexcept>
+#include <utility>
 
 namespace a3::agent {
 namespace {
@@ -44,53 +45,38 @@ void ImageSizes::validate(const std::string& where) const {
   }
 }
 
-SensorSuite::SensorSuite(const nlohmann::json& sensors, const nlohmann::json& payloads, ImageSizes sizes)
-    : sizes_(std::move(sizes)) {
-  if (!sensors.is_null() && !sensors.is_object()) throw std::invalid_argument("uav.sensors: expected an object");
-  if (!payloads.is_null() && !payloads.is_array()) throw std::invalid_argument("uav.payloads: expected an array");
-  if (sensors.is_object()) {
-    for (const auto& [name, health] : sensors.items()) {
-      if (!health.is_string()) throw std::invalid_argument("uav.sensors." + name + ": expected a string");
-      SensorInfo s;
-      s.name = name;
-      s.health = health.get<std::string>();
-      s.usable = kUsableHealth.count(lower(s.health)) != 0;
-      s.imaging = kNonImaging.count(lower(name)) == 0;
-      s.kind = lower(name);
-      sensors_[name] = s;
-    }
-  }
-  if (payloads.is_array()) {
-    for (std::size_t i = 0; i < payloads.size(); ++i) {
-      const auto& p = payloads[i];
-      const std::string where = "uav.payloads[" + std::to_string(i) + "]";
-      if (!p.is_object()) throw std::invalid_argument(where + ": expected an object");
-      if (!p.contains("id") || !p["id"].is_string() || p["id"].get<std::string>().empty()) {
-        throw std::invalid_argument(where + ".id: expected a non-empty string");
-      }
-      const auto text = [&](const char* key) {
-        if (!p.contains(key)) return std::string();
-        if (!p[key].is_string()) throw std::invalid_argument(where + "." + key + ": expected a string");
-        return p[key].get<std::string>();
-      };
-      SensorInfo s;
-      s.name = p["id"].get<std::string>();
-      if (sensors_.count(s.name) != 0) throw std::invalid_argument(where + ".id: '" + s.name + "' is also a sensor name");
-      s.health = "ok";
-      s.usable = true;
-      s.payload = true;
-      const std::string type = text("type"), category = text("category");
-      s.imaging = payload_imaging(type, category);
-      s.kind = payload_kind(s.name, type, category);
-      if (p.contains("power_W")) {
-        if (!p["power_W"].is_number()) throw std::invalid_argument(where + ".power_W: expected a number");
-        s.power_w = p["power_W"].get<double>();
-      }
-      sensors_[s.name] = s;
-    }
-  }
+SensorSuite::SensorSuite(const SensorSuiteConfig& declared, ImageSizes sizes) : sizes_(std::move(sizes)) {
+  for (const auto& [name, health] : declared.sensor_health) add_sensor(name, health);
+  for (std::size_t i = 0; i < declared.payloads.size(); ++i) add_payload(declared.payloads[i], i);
   if (sensors_.count("rgb") == 0) sensors_["rgb"] = SensorInfo{"rgb", "ok", true, false, true, "rgb", 0.0};
   if (sensors_.at("rgb").usable) active_.insert("rgb");
+}
+
+void SensorSuite::add_sensor(const std::string& name, const std::string& health) {
+  SensorInfo s;
+  s.name = name;
+  s.health = health;
+  s.usable = kUsableHealth.count(lower(health)) != 0;
+  s.imaging = kNonImaging.count(lower(name)) == 0;
+  s.kind = lower(name);
+  sensors_[name] = s;
+}
+
+void SensorSuite::add_payload(const DeclaredPayload& payload, std::size_t index) {
+  const std::string where = "uav.payloads[" + std::to_string(index) + "]";
+  if (payload.id.empty()) throw std::invalid_argument(where + ".id: expected a non-empty string");
+  if (sensors_.count(payload.id) != 0) {
+    throw std::invalid_argument(where + ".id: '" + payload.id + "' is also a sensor name");
+  }
+  SensorInfo s;
+  s.name = payload.id;
+  s.health = "ok";
+  s.usable = true;
+  s.payload = true;
+  s.imaging = payload_imaging(payload.type, payload.category);
+  s.kind = payload_kind(payload.id, payload.type, payload.category);
+  s.power_w = payload.power_W;
+  sensors_[s.name] = s;
 }
 
 const SensorInfo* SensorSuite::find(const std::string& name) const {

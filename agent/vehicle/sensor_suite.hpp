@@ -1,18 +1,18 @@
-// The vehicle's sensors and payloads as the scenario declares them (initial_state.uav.sensors:
-// name → health string; uav.payloads[]: objects with an "id"), which of them are switched on,
+// The vehicle's sensors and payloads as the scenario declares them (SensorSuiteConfig, parsed
+// from initial_state.uav.sensors and uav.payloads: sensor_suite_config.hpp), which of them are switched on,
 // and how large an image each takes. A sensor is usable when its health is one of
 // "ok", "nominal", "online", "active", "ready", "standby", "locked" (any case); anything else
 // ("offline", "failed", "degraded", ...) makes activate_sensor and capture_image answer an
 // error. rgb is on from the start when usable (and usable when the scenario does not list it).
 #pragma once
 
-#include <nlohmann/json.hpp>
-
 #include <cstdint>
 #include <map>
 #include <set>
 #include <string>
 #include <vector>
+
+#include "agent/vehicle/sensor_suite_config.hpp"
 
 namespace a3::agent {
 
@@ -36,8 +36,9 @@ struct SensorInfo {
 
 class SensorSuite {
  public:
-  // Throws std::invalid_argument naming the field ("uav.sensors.lidar: expected a string").
-  SensorSuite(const nlohmann::json& sensors, const nlohmann::json& payloads, ImageSizes sizes);
+  // Throws std::invalid_argument naming the payload ("uav.payloads[0].id: expected a non-empty
+  // string", "uav.payloads[1].id: 'rgb' is also a sensor name").
+  SensorSuite(const SensorSuiteConfig& declared, ImageSizes sizes);
 
   const SensorInfo* find(const std::string& name) const;
   std::vector<std::string> names() const;
@@ -46,6 +47,9 @@ class SensorSuite {
   int64_t image_bytes(const SensorInfo& sensor) const;
 
  private:
+  void add_sensor(const std::string& name, const std::string& health);
+  void add_payload(const DeclaredPayload& payload, std::size_t index);
+
   std::map<std::string, SensorInfo> sensors_;
   std::set<std::string> active_;
   ImageSizes sizes_;

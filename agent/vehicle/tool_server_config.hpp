@@ -34,11 +34,10 @@ struct ToolServerConfig {
   Airspace airspace;
   // The take-off point: where return_to_home goes and the battery estimate returns to.
   Eigen::Vector3d home_W_m = Eigen::Vector3d::Zero();
-  // initial_state.env: {"weather", "wind_mps", "wind_dir_deg"[, "gust_mps"]} (weather_service).
-  nlohmann::json env = nlohmann::json::object();
-  // initial_state.uav.sensors (name → health) and uav.payloads (objects with "id").
-  nlohmann::json sensors = nlohmann::json::object();
-  nlohmann::json payloads = nlohmann::json::array();
+  // initial_state.env: weather, wind, gust (the weather service).
+  WeatherEnv env;
+  // initial_state.uav.sensors (name → health) and what uav.payloads declares (the sensor suite).
+  SensorSuiteConfig sensors;
   EnergyModel energy;       // battery cost estimate (hover power, capacity, speeds, margin)
   AirframeLimits airframe;  // fc limits and drag: the ground speed made good in wind (ground_speed.hpp)
   GateConfig gate;          // margins, battery reserve, speed limit, return altitude

@@ -49,7 +49,7 @@ ToolServerNode::ToolServerNode(ToolServerConfig config, const ToolCatalog& catal
       catalog_(catalog),
       handlers_(handlers),
       gate_(config_.airspace, config_.gate, config_.energy, config_.home_W_m),
-      sensors_(config_.sensors, config_.payloads, config_.images),
+      sensors_(config_.sensors, config_.images),
       swarm_(config_.airspace.traffic, config_.swarm),
       weather_(config_.env, config_.weather),
       wind_(config_.airframe, wind_from_report(weather_.wind_mps(), weather_.wind_dir_deg())),

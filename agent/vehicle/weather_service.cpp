@@ -1,47 +1,19 @@
 // The simulated weather service.
 #include "agent/vehicle/weather_service.hpp"
 
-#include <cmath>
-#include <stdexcept>
+#include <utility>
 
 #include "agent/vehicle/observation_json.hpp"
 
 namespace a3::agent {
-namespace {
 
-double number(const nlohmann::json& env, const char* key, double fallback, bool non_negative) {
-  if (!env.contains(key)) return fallback;
-  const auto& v = env[key];
-  if (!v.is_number() || !std::isfinite(v.get<double>()) || (non_negative && v.get<double>() < 0.0)) {
-    throw std::invalid_argument(std::string("env.") + key + ": expected a finite number" +
-                                (non_negative ? " >= 0" : ""));
-  }
-  return v.get<double>();
-}
-
-}  // namespace
-
-void WeatherConfig::validate(const std::string& where) const {
-  if (!std::isfinite(gust_factor) || gust_factor < 1.0) {
-    throw std::invalid_argument(where + ".gust_factor must be >= 1, got " + std::to_string(gust_factor));
-  }
-  if (!std::isfinite(caution_gust_mps) || !std::isfinite(no_fly_gust_mps) || caution_gust_mps < 0.0 ||
-      no_fly_gust_mps < caution_gust_mps) {
-    throw std::invalid_argument(where + ".caution_gust_mps and no_fly_gust_mps must satisfy 0 <= caution <= no_fly");
-  }
-}
-
-WeatherService::WeatherService(const nlohmann::json& env, WeatherConfig config) : config_(std::move(config)) {
+WeatherService::WeatherService(const WeatherEnv& env, WeatherConfig config) : config_(std::move(config)) {
   config_.validate("weather");
-  if (env.is_null()) return;
-  if (!env.is_object()) throw std::invalid_argument("env: expected an object");
-  if (env.contains("weather")) {
-    if (!env["weather"].is_string()) throw std::invalid_argument("env.weather: expected a string");
-    weather_ = env["weather"].get<std::string>();
-  }
-  wind_mps_ = number(env, "wind_mps", 0.0, true);
-  wind_dir_deg_ = number(env, "wind_dir_deg", 0.0, false);
-  gust_mps_ = number(env, "gust_mps", wind_mps_ * config_.gust_factor, true);
+  env.validate("env");
+  weather_ = env.weather;
+  wind_mps_ = env.wind_mps;
+  wind_dir_deg_ = env.wind_dir_deg;
+  gust_mps_ = env.gust_mps.value_or(wind_mps_ * config_.gust_factor);
 }
 
 PeerAnswer WeatherService::weather_update(const SelfView& self) const {

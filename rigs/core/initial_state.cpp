@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "common/json_file.hpp"
+#include "rigs/core/uav_payloads.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -37,21 +39,6 @@ AltitudeBounds bounds(const nlohmann::json& object, const std::string& where) {
   const AltitudeBounds out{b[0].get<double>(), b[1].get<double>()};
   if (!std::isfinite(out.min_m) || !std::isfinite(out.max_m) || !(out.min_m < out.max_m)) {
     throw InputError(w + ": expected finite [min, max] with min < max");
-  }
-  return out;
-}
-
-InitialEnv env(const nlohmann::json& state, const std::string& where) {
-  const auto& e = common::require_object(state, "env", where);
-  const std::string w = where + "/env";
-  InitialEnv out;
-  out.weather = common::require_string(e, "weather", w);
-  out.wind_mps = finite_number(e, "wind_mps", w);
-  out.wind_dir_deg = finite_number(e, "wind_dir_deg", w);
-  if (out.wind_mps < 0.0) throw InputError(w + "/wind_mps: must be >= 0");
-  if (e.contains("gust_mps")) {
-    out.gust_mps = finite_number(e, "gust_mps", w);
-    if (*out.gust_mps < 0.0) throw InputError(w + "/gust_mps: must be >= 0");
   }
   return out;
 }
@@ -93,16 +80,11 @@ void parse_uav(const nlohmann::json& state, const std::string& where, InitialSta
   if (!(out.battery_pct > 0.0 && out.battery_pct <= 100.0)) {
     throw InputError(w + "/energy/battery_pct: must be in (0, 100]");
   }
-  if (uav.contains("sensors")) {
-    const auto& sensors = common::require_object(uav, "sensors", w);
-    for (const auto& [name, health] : sensors.items()) {
-      if (!health.is_string()) throw InputError(w + "/sensors/" + name + ": expected a health string (\"ok\", \"offline\", ...)");
-      out.sensors[name] = health.get<std::string>();
-    }
-  }
+  if (uav.contains("sensors")) out.sensors.sensor_health = agent::parse_sensor_health(uav["sensors"], w + "/sensors");
   if (uav.contains("payloads")) {
-    out.payload_descriptions = common::require_array(uav, "payloads", w);
-    out.payloads = dynamics::payloads_from_json(out.payload_descriptions, w + "/payloads");
+    UavPayloads payloads = parse_uav_payloads(common::require_array(uav, "payloads", w), w + "/payloads");
+    out.payloads = std::move(payloads.physical);
+    out.sensors.payloads = std::move(payloads.declared);
   }
 }
 
@@ -113,7 +95,7 @@ InitialState parse_initial_state(const nlohmann::json& state, const std::string&
   InitialState out;
   out.domain = state.contains("domain") ? common::require_string(state, "domain", where) : out.domain;
   out.time_s = finite_number_or(state, "time_s", 0.0, where);
-  out.env = env(state, where);
+  out.env = agent::parse_weather_env(common::require_object(state, "env", where), where + "/env");
   parse_airspace(state, where, out);
   parse_uav(state, where, out);
   const AltitudeBounds e = out.envelope();

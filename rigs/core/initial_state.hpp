@@ -1,7 +1,10 @@
 // The one parser of an α³-Bench initial_state (a scenario's, or any corpus episode's) into a
 // typed InitialState that every component is configured from: the dynamics (pose, wind,
 // payloads, battery), the flight controller's fence, the tool server (env, sensors, payloads)
-// and the airspace (geofence, altitude envelopes).
+// and the airspace (geofence, altitude envelopes). Sections owned by one component are parsed
+// by that component's parser (env: agent::parse_weather_env; uav.sensors:
+// agent::parse_sensor_health); uav.payloads, read by both the dynamics and the tool server, by
+// rigs/core/uav_payloads.hpp.
 #pragma once
 
 #include <Eigen/Core>
@@ -9,11 +12,12 @@
 
 #include <algorithm>
 #include <limits>
-#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "agent/vehicle/sensor_suite_config.hpp"
+#include "agent/vehicle/weather_config.hpp"
 #include "common/polygon.hpp"
 #include "dynamics/scenario_setup.hpp"
 #include "dynamics/vehicle_params.hpp"
@@ -25,17 +29,10 @@ struct AltitudeBounds {
   double max_m = 0.0;
 };
 
-struct InitialEnv {
-  std::string weather = "clear";
-  double wind_mps = 0.0;
-  double wind_dir_deg = 0.0;           // where the wind blows from, degrees (corpus convention)
-  std::optional<double> gust_mps;      // absent: the weather service's gust factor applies
-};
-
 struct InitialState {
   std::string domain = "uav";
   double time_s = 0.0;
-  InitialEnv env;
+  agent::WeatherEnv env;                      // env (parsed by agent::parse_weather_env)
   common::Polygon2d geofence;                 // airspace.geofence[0].points; empty: unbounded
   std::optional<AltitudeBounds> alt_bounds;   // airspace.alt_bounds
   std::optional<AltitudeBounds> policy_alt_bounds;  // policy.alt_bounds
@@ -43,9 +40,9 @@ struct InitialState {
   double yaw_deg = 0.0;                       // uav.pose.yaw, degrees from east
   double speed_mps = 0.0;
   double battery_pct = 100.0;                 // uav.energy.battery_pct
-  std::map<std::string, std::string> sensors;  // uav.sensors: name → health
+  // uav.sensors (name → health) and the declared part of uav.payloads (ids, kinds, power).
+  agent::SensorSuiteConfig sensors;
   std::vector<dynamics::Payload> payloads;    // uav.payloads: the physical part
-  nlohmann::json payload_descriptions = nlohmann::json::array();  // uav.payloads as given (ids, kinds)
 
   // The altitude envelope the vehicle must keep: airspace.alt_bounds narrowed by
   // policy.alt_bounds (either may be absent; both absent: unbounded).

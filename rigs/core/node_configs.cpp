@@ -19,7 +19,7 @@
 namespace a3::rigs {
 namespace {
 
-linkemu::NetworkTrace trace_for(const NetworkScript& n, const std::filesystem::path& shared_dir) {
+linkemu::NetworkTrace trace_for(const linkemu::ScenarioNetwork& n, const std::filesystem::path& shared_dir) {
   std::filesystem::path p = n.trace;
   if (n.trace.rfind("alphabench:", 0) == 0) {
     p = n.trace.substr(11);
@@ -66,10 +66,8 @@ RigConfigs make_rig_configs(const Scenario& s, const RunOptions& o) {
   agent::ToolServerConfig& t = c.tool_server;
   t.airspace = s.airspace;
   t.home_W_m = s.mission.home_W_m;
-  t.env = {{"weather", s.start.env.weather}, {"wind_mps", s.start.env.wind_mps}, {"wind_dir_deg", s.start.env.wind_dir_deg}};
-  if (s.start.env.gust_mps) t.env["gust_mps"] = *s.start.env.gust_mps;
+  t.env = s.start.env;
   t.sensors = s.start.sensors;
-  t.payloads = s.start.payload_descriptions;
   dynamics::RotorSpeeds hover;
   hover.fill(model.hover_speed_radps());
   t.energy.hover_power_w = model.electrical_power_W(hover);

@@ -21,7 +21,6 @@ namespace {
 using common::InputError;
 using common::number_or;
 using common::require_array;
-using common::require_number;
 using common::require_object;
 using common::require_string;
 
@@ -94,50 +93,6 @@ agent::Mission mission(const nlohmann::json& m, const std::string& wm) {
   return out;
 }
 
-// network.link: the link emulator's settings, less what the scenario sets in its own fields.
-linkemu::LinkEmulatorConfig link_settings(const nlohmann::json& link, const std::string& wl,
-                                          const std::filesystem::path& base_dir) {
-  const std::pair<const char*, const char*> owned[] = {
-      {"seed", "the run's --seed"}, {"slice", "network/initial_slice"},
-      {"trace", "network/trace and trace_period_s"}, {"degradations", "network/degradations"}};
-  for (const auto& [key, owner] : owned) {
-    if (link.is_object() && link.contains(key)) throw InputError(wl + "/" + key + ": set by " + std::string(owner) + ", not here");
-  }
-  linkemu::LinkEmulatorConfig c = linkemu::parse_link_emulator_config(link, wl, base_dir);
-  try {
-    linkemu::validate(c);
-  } catch (const std::invalid_argument& e) {
-    throw InputError(wl + ": " + e.what());
-  }
-  return c;
-}
-
-NetworkScript network(const nlohmann::json& n, const std::string& wn, const std::filesystem::path& base_dir) {
-  NetworkScript out;
-  out.initial_slice = n.contains("initial_slice") ? require_string(n, "initial_slice", wn) : out.initial_slice;
-  if (out.initial_slice != "URLLC" && out.initial_slice != "eMBB" && out.initial_slice != "mMTC") {
-    throw InputError(wn + "/initial_slice: '" + out.initial_slice + "' is not URLLC, eMBB or mMTC");
-  }
-  if (n.contains("degradations")) {
-    const auto& d = require_array(n, "degradations", wn);
-    for (std::size_t i = 0; i < d.size(); ++i) {
-      const std::string wd = wn + "/degradations/" + std::to_string(i);
-      NetworkScript::Window w{require_number(d[i], "start_s", wd), require_number(d[i], "duration_s", wd)};
-      if (w.start_s < 0.0 || !(w.duration_s > 0.0)) throw InputError(wd + ": start_s >= 0 and duration_s > 0");
-      out.degradations.push_back(w);
-    }
-  }
-  if (n.contains("trace")) {
-    std::string t = require_string(n, "trace", wn);
-    if (t.rfind("alphabench:", 0) != 0 && std::filesystem::path(t).is_relative()) t = (base_dir / t).string();
-    out.trace = t;
-  }
-  out.trace_period_s = number_or(n, "trace_period_s", out.trace_period_s, wn);
-  if (!(out.trace_period_s > 0.0)) throw InputError(wn + "/trace_period_s: must be > 0");
-  if (n.contains("link")) out.link = link_settings(require_object(n, "link", wn), wn + "/link", base_dir);
-  return out;
-}
-
 // The scenario's airframe with its payloads. Throws naming /airframe.
 dynamics::VehicleParams loaded_airframe(const Scenario& s, const std::string& where) {
   try {
@@ -164,7 +119,9 @@ Scenario parse_scenario(const nlohmann::json& j, const std::string& where, const
   s.mission = mission(require_object(j, "mission", root), root + "/mission");
   s.mission.name = s.name;
   s.mission.home_W_m = {s.start.pose_W_m.x(), s.start.pose_W_m.y(), 0.0};
-  if (j.contains("network")) s.network = network(require_object(j, "network", root), root + "/network", base_dir);
+  if (j.contains("network")) {
+    s.network = linkemu::parse_scenario_network(require_object(j, "network", root), root + "/network", base_dir);
+  }
   return s;
 }
 

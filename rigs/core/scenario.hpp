@@ -17,25 +17,10 @@
 
 #include "agent/airspace.hpp"
 #include "agent/mission/mission.hpp"
-#include "linkemu/link_emulator_config.hpp"
+#include "linkemu/scenario_network.hpp"
 #include "rigs/core/initial_state.hpp"
 
 namespace a3::rigs {
-
-struct NetworkScript {
-  std::string initial_slice = "eMBB";
-  // Windows of forced degradation (the SPEC §2 hard regime), mission seconds.
-  struct Window {
-    double start_s = 0.0;
-    double duration_s = 0.0;
-  };
-  std::vector<Window> degradations;
-  std::string trace;       // a recorded trace to replay instead (file, or alphabench:<path>)
-  double trace_period_s = 20.0;
-  // network.link: the link emulator's own settings (linkemu/link_emulator_config.hpp) with
-  // the scenario's slice, degradations and trace and the run's seed applied over them.
-  linkemu::LinkEmulatorConfig link;
-};
 
 struct Scenario {
   std::string name;
@@ -46,7 +31,7 @@ struct Scenario {
   InitialState start;            // the same, parsed: what every node is configured from
   agent::Mission mission;
   agent::Airspace airspace;
-  NetworkScript network;
+  linkemu::ScenarioNetwork network;  // parsed by linkemu::parse_scenario_network
 
   // What agents are told about the airspace: geofence, altitude envelope, no-fly zones, and
   // the other aircraft (ids and declared intent, not their future).

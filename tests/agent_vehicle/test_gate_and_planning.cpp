@@ -268,7 +268,7 @@ TEST(Swarm, AClimbedPlanRampsUpFromWhenItWasAsked) {
 
 TEST(Sensors, ReadFromTheScenarioWithKindsAndHealth) {
   const auto c = test::test_config();
-  SensorSuite s(c.sensors, c.payloads, ImageSizes{});
+  SensorSuite s(c.sensors, ImageSizes{});
   EXPECT_TRUE(s.active("rgb")) << "rgb is on from the start";
   EXPECT_FALSE(s.active("thermal"));
   EXPECT_FALSE(s.find("lidar")->usable);
@@ -278,12 +278,12 @@ TEST(Sensors, ReadFromTheScenarioWithKindsAndHealth) {
   EXPECT_FALSE(s.find("drop_box")->imaging);
   EXPECT_EQ(s.image_bytes(*s.find("thermal")), 650'000);
   EXPECT_EQ(s.image_bytes(*s.find("lidar")), 6'000'000);
-  SensorSuite none(nlohmann::json::object(), nlohmann::json::array(), ImageSizes{});
+  SensorSuite none(SensorSuiteConfig{}, ImageSizes{});
   ASSERT_NE(none.find("rgb"), nullptr) << "rgb when the scenario lists nothing";
-  SensorSuite radar({{"radar", "ok"}}, nullptr, ImageSizes{});
+  SensorSuite radar(SensorSuiteConfig{{{"radar", "ok"}}, {}}, ImageSizes{});
   EXPECT_EQ(radar.image_bytes(*radar.find("radar")), 2'000'000) << "other sensors: the default size";
   try {
-    SensorSuite bad(nlohmann::json::object(), nlohmann::json::array({{{"type", "camera"}}}), ImageSizes{});
+    SensorSuite bad(SensorSuiteConfig{{}, {{"", "camera", "", 0.0}}}, ImageSizes{});
     ADD_FAILURE() << "a payload without an id";
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "uav.payloads[0].id: expected a non-empty string");
@@ -291,12 +291,12 @@ TEST(Sensors, ReadFromTheScenarioWithKindsAndHealth) {
 }
 
 TEST(Weather, ReadFromEnvWithErrorsNamingTheField) {
-  const WeatherService w({{"weather", "dust"}, {"wind_mps", 7.5}, {"wind_dir_deg", 240.0}}, WeatherConfig{});
+  const WeatherService w(WeatherEnv{"dust", 7.5, 240.0, std::nullopt}, WeatherConfig{});
   EXPECT_EQ(w.weather(), "dust");
   EXPECT_DOUBLE_EQ(w.gust_mps(), 10.5);
   EXPECT_EQ(w.weather_update(SelfView{}).payload["advisory"], "caution");
   try {
-    WeatherService bad({{"wind_mps", "strong"}}, WeatherConfig{});
+    WeatherService bad(WeatherEnv{"clear", -1.0, 0.0, std::nullopt}, WeatherConfig{});
     ADD_FAILURE() << "accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "env.wind_mps: expected a finite number >= 0");

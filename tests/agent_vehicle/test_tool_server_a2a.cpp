@@ -174,11 +174,11 @@ TEST(ToolServerA2a, WeatherComesFromTheScenariosEnvironment) {
   EXPECT_EQ(w["payload"]["advisory"], "ok");
 
   auto gusty = test::test_config();
-  gusty.env["gust_mps"] = 12.0;
+  gusty.env.gust_mps = 12.0;
   Rig rig2(gusty);
   EXPECT_EQ(rig2.call(a2a("request_weather_update", "weather_service"))["payload"]["advisory"], "caution");
   auto storm = test::test_config();
-  storm.env["weather"] = "thunderstorm";
+  storm.env.weather = "thunderstorm";
   Rig rig3(storm);
   EXPECT_EQ(rig3.call(a2a("request_weather_update", "weather_service"))["payload"]["advisory"], "no_fly");
 }

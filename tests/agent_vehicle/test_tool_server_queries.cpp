@@ -282,19 +282,19 @@ TEST(ToolServerQueries, TheSameCallsGiveTheSameEpisodeInVirtualTime) {
 
 TEST(ToolServerQueries, BadScenarioInputIsRefusedNamingTheField) {
   auto config = test::test_config();
-  config.sensors = {{"rgb", 1}};
+  config.sensors.payloads.push_back({"rgb", "camera", "", 0.0});
   EXPECT_THROW(
       {
         try {
           ToolServerNode node(config);
         } catch (const std::invalid_argument& e) {
-          EXPECT_STREQ(e.what(), "uav.sensors.rgb: expected a string");
+          EXPECT_STREQ(e.what(), "uav.payloads[2].id: 'rgb' is also a sensor name");
           throw;
         }
       },
       std::invalid_argument);
   config = test::test_config();
-  config.env["wind_mps"] = -3.0;
+  config.env.wind_mps = -3.0;
   EXPECT_THROW(ToolServerNode{config}, std::invalid_argument);
   config = test::test_config();
   config.gate.nfz_margin_m = -1.0;

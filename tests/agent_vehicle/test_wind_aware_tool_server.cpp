@@ -17,7 +17,7 @@ constexpr double kSettle_s = 3.0;  // EnergyModel::settle_s_per_waypoint
 
 ToolServerConfig config_with_wind(double speed_mps, double from_deg) {
   ToolServerConfig c = test::test_config();
-  c.env = {{"weather", "clear"}, {"wind_mps", speed_mps}, {"wind_dir_deg", from_deg}};
+  c.env = {"clear", speed_mps, from_deg, std::nullopt};
   return c;
 }
 

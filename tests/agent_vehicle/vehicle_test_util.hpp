@@ -61,11 +61,10 @@ inline ToolServerConfig test_config() {
   ToolServerConfig c;
   c.airspace = test_airspace();
   c.home_W_m = Eigen::Vector3d(20, 20, 0);
-  c.env = {{"weather", "clear"}, {"wind_mps", 6.0}, {"wind_dir_deg", 240.0}};
-  c.sensors = {{"rgb", "ok"}, {"thermal", "ok"}, {"lidar", "offline"}, {"gnss", "ok"}};
-  c.payloads = nlohmann::json::array(
-      {{{"id", "main_camera"}, {"type", "gimbaled_camera"}, {"category", "imaging_optical"}, {"power_W", 15.0}},
-       {{"id", "drop_box"}, {"type", "parcel_release"}, {"category", "delivery"}}});
+  c.env = {"clear", 6.0, 240.0, std::nullopt};
+  c.sensors.sensor_health = {{"rgb", "ok"}, {"thermal", "ok"}, {"lidar", "offline"}, {"gnss", "ok"}};
+  c.sensors.payloads = {{"main_camera", "gimbaled_camera", "imaging_optical", 15.0},
+                        {"drop_box", "parcel_release", "delivery", 0.0}};
   return c;
 }
 
