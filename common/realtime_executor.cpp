@@ -117,7 +117,13 @@ void RealTimeExecutor::run_due_timers() {
     }
     if (!due) return;
     ++timers_run_;
-    (*due->fn)();
+    try {
+      due->fn();
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      queue_.finish(*due);  // a periodic timer keeps its callback for whoever catches this
+      throw;
+    }
     std::lock_guard<std::mutex> lock(mutex_);
     queue_.finish(*due);
   }

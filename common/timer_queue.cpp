@@ -1,44 +1,105 @@
-// Deterministic timer ordering by (time, insertion sequence).
+// Deterministic timer ordering by (time, insertion sequence), without steady-state allocation.
 #include "common/timer_queue.hpp"
 
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
 namespace a3::common {
+namespace {
+
+// std::push_heap / pop_heap build a max-heap: "greater" puts the earliest entry on top.
+template <typename Entry>
+bool later(const Entry& a, const Entry& b) {
+  return a.time_us != b.time_us ? a.time_us > b.time_us : a.seq > b.seq;
+}
+
+}  // namespace
+
+uint32_t TimerQueue::take_slot() {
+  if (!free_slots_.empty()) {
+    const uint32_t slot = free_slots_.back();
+    free_slots_.pop_back();
+    return slot;
+  }
+  if (slots_.size() > kSlotMask) {
+    throw std::length_error("TimerQueue: more than " + std::to_string(kSlotMask) + " pending timers");
+  }
+  slots_.emplace_back();
+  return static_cast<uint32_t>(slots_.size() - 1);
+}
+
+void TimerQueue::release_slot(uint32_t slot) {
+  slots_[slot].id = 0;
+  slots_[slot].fn = nullptr;
+  free_slots_.push_back(slot);
+  --live_;
+}
+
+void TimerQueue::push_entry(int64_t time_us, TimerId id) {
+  heap_.push_back(Entry{time_us, next_seq_++, id});
+  std::push_heap(heap_.begin(), heap_.end(), later<Entry>);
+}
+
+void TimerQueue::drop_cancelled_top() const {
+  while (!heap_.empty() && !is_live(heap_.front())) {
+    std::pop_heap(heap_.begin(), heap_.end(), later<Entry>);
+    heap_.pop_back();
+  }
+}
+
+// Cancelled entries wait in the heap until they reach the top; when they outnumber the live
+// ones (timeouts re-armed far ahead, say), the heap is rebuilt without them.
+void TimerQueue::compact_if_mostly_cancelled() {
+  if (heap_.size() < 64 || heap_.size() < 2 * live_) return;
+  heap_.erase(std::remove_if(heap_.begin(), heap_.end(), [this](const Entry& e) { return !is_live(e); }),
+              heap_.end());
+  std::make_heap(heap_.begin(), heap_.end(), later<Entry>);
+}
 
 TimerId TimerQueue::add(int64_t first_us, int64_t period_us, std::function<void()> fn) {
-  const TimerId id = next_id_++;
-  const Key key{first_us, next_seq_++};
-  order_.emplace(key, id);
-  timers_.emplace(id, std::make_pair(key, Timer{period_us, std::make_shared<std::function<void()>>(std::move(fn))}));
+  const uint32_t slot = take_slot();
+  const TimerId id = (next_serial_++ << kSlotBits) | slot;
+  slots_[slot].id = id;
+  slots_[slot].period_us = period_us;
+  slots_[slot].fn = std::move(fn);
+  ++live_;
+  push_entry(first_us, id);
   return id;
 }
 
 void TimerQueue::cancel(TimerId id) {
-  auto it = timers_.find(id);
-  if (it == timers_.end()) return;
-  order_.erase(it->second.first);
-  timers_.erase(it);
+  const TimerId slot = id & kSlotMask;
+  if (id == 0 || slot >= slots_.size() || slots_[slot].id != id) return;
+  release_slot(static_cast<uint32_t>(slot));
+  compact_if_mostly_cancelled();
 }
 
 std::optional<int64_t> TimerQueue::next_time_us() const {
-  if (order_.empty()) return std::nullopt;
-  return order_.begin()->first.time_us;
+  drop_cancelled_top();
+  if (heap_.empty()) return std::nullopt;
+  return heap_.front().time_us;
 }
 
 std::optional<TimerQueue::Due> TimerQueue::pop_due(int64_t t_us) {
-  if (order_.empty() || order_.begin()->first.time_us > t_us) return std::nullopt;
-  const auto [key, id] = *order_.begin();
-  order_.erase(order_.begin());
-  auto& entry = timers_.at(id);
-  if (entry.second.period_us > 0) {
-    const Key next{key.time_us + entry.second.period_us, next_seq_++};
-    entry.first = next;
-    order_.emplace(next, id);
-  }
-  return Due{id, key.time_us, entry.second.period_us, entry.second.fn};
+  drop_cancelled_top();
+  if (heap_.empty() || heap_.front().time_us > t_us) return std::nullopt;
+  std::pop_heap(heap_.begin(), heap_.end(), later<Entry>);
+  const Entry entry = heap_.back();
+  heap_.pop_back();
+  Slot& slot = slots_[entry.id & kSlotMask];
+  if (slot.period_us > 0) push_entry(entry.time_us + slot.period_us, entry.id);
+  return Due{entry.id, entry.time_us, slot.period_us, std::move(slot.fn)};
 }
 
-void TimerQueue::finish(const Due& due) {
-  auto it = timers_.find(due.id);
-  if (it != timers_.end() && it->second.second.period_us <= 0) timers_.erase(it);
+void TimerQueue::finish(Due& due) {
+  const uint32_t slot = static_cast<uint32_t>(due.id & kSlotMask);
+  if (slot >= slots_.size() || slots_[slot].id != due.id) return;  // cancelled while it ran
+  if (due.period_us > 0) {
+    slots_[slot].fn = std::move(due.fn);
+  } else {
+    release_slot(slot);
+  }
 }
 
 }  // namespace a3::common

@@ -1,13 +1,14 @@
 // An ordered queue of timers (time, insertion order): the deterministic core shared by
 // both executors. Not thread-safe; executors lock around it where needed.
+// Allocation-free in steady state: timers live in reused slots, the order is a binary heap
+// in a reused vector (a cancelled timer's entry is dropped when it reaches the top), and a
+// callback is moved, never copied (a std::function's small-buffer callable stays inline).
 #pragma once
 
 #include <cstdint>
 #include <functional>
-#include <map>
-#include <memory>
 #include <optional>
-#include <unordered_map>
+#include <vector>
 
 #include "common/executor.hpp"
 
@@ -19,8 +20,8 @@ class TimerQueue {
     TimerId id;
     int64_t time_us;
     int64_t period_us;  // 0: a one-shot timer
-    // Shared so a callback may cancel its own timer (or add others) while it runs.
-    std::shared_ptr<std::function<void()>> fn;
+    // Held here while it runs, so a callback may cancel its own timer (or add others).
+    std::function<void()> fn;
   };
 
   TimerId add(int64_t first_us, int64_t period_us, std::function<void()> fn);
@@ -30,26 +31,40 @@ class TimerQueue {
   // Removes the earliest timer due at or before t_us and returns it; a periodic timer is
   // re-armed for its next period before its callback runs. Returns nothing when none is due.
   std::optional<Due> pop_due(int64_t t_us);
-  // Called after a popped one-shot timer's callback ran, to free it.
-  void finish(const Due& due);
-  std::size_t size() const { return timers_.size(); }
+  // Called after a popped timer's callback ran (or threw): frees a one-shot, gives a periodic
+  // timer (unless cancelled meanwhile) its callback back. Until then a periodic timer's next
+  // period must not be popped (executors do not run the queue from inside a callback).
+  void finish(Due& due);
+  std::size_t size() const { return live_; }
 
  private:
-  struct Timer {
-    int64_t period_us;
-    std::shared_ptr<std::function<void()>> fn;
+  struct Slot {
+    TimerId id = 0;  // 0: free
+    int64_t period_us = 0;
+    std::function<void()> fn;
   };
-  struct Key {
+  struct Entry {
     int64_t time_us;
     uint64_t seq;
-    bool operator<(const Key& o) const {
-      return time_us != o.time_us ? time_us < o.time_us : seq < o.seq;
-    }
+    TimerId id;
   };
-  std::map<Key, TimerId> order_;
-  std::unordered_map<TimerId, std::pair<Key, Timer>> timers_;
+  // A TimerId is (serial << kSlotBits) | slot: unique, increasing, and finds its slot.
+  static constexpr unsigned kSlotBits = 24;
+  static constexpr TimerId kSlotMask = (TimerId{1} << kSlotBits) - 1;
+
+  uint32_t take_slot();
+  void release_slot(uint32_t slot);
+  bool is_live(const Entry& entry) const { return slots_[entry.id & kSlotMask].id == entry.id; }
+  void push_entry(int64_t time_us, TimerId id);
+  void drop_cancelled_top() const;
+  void compact_if_mostly_cancelled();
+
+  std::vector<Slot> slots_;
+  std::vector<uint32_t> free_slots_;
+  mutable std::vector<Entry> heap_;  // min-heap on (time_us, seq); may hold cancelled entries
+  std::size_t live_ = 0;
   uint64_t next_seq_ = 0;
-  TimerId next_id_ = 1;
+  uint64_t next_serial_ = 1;
 };
 
 }  // namespace a3::common

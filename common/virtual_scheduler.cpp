@@ -16,10 +16,15 @@ TimerId VirtualScheduler::schedule(int64_t first_us, int64_t period_us,
                     std::move(fn));
 }
 
-void VirtualScheduler::run_event(const TimerQueue::Due& due) {
+void VirtualScheduler::run_event(TimerQueue::Due& due) {
   clock_.advance_to(due.time_us);
   ++events_run_;
-  (*due.fn)();
+  try {
+    due.fn();
+  } catch (...) {
+    queue_.finish(due);  // a periodic timer keeps its callback for whoever catches this
+    throw;
+  }
   queue_.finish(due);
 }
 

@@ -31,7 +31,7 @@ class VirtualScheduler final : public Executor {
   std::size_t pending() const { return queue_.size(); }
 
  private:
-  void run_event(const TimerQueue::Due& due);
+  void run_event(TimerQueue::Due& due);
 
   VirtualClock clock_;
   TimerQueue queue_;

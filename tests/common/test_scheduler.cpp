@@ -105,6 +105,22 @@ TEST(VirtualScheduler, PeriodicCallbackCancelsItsOwnTimer) {
   EXPECT_EQ(s.pending(), 0u);
 }
 
+// The rig catches a node's exception and ends the episode; a test may catch it and go on:
+// the periodic timer that threw is still armed, with its callback.
+TEST(VirtualScheduler, APeriodicTimerThatThrewRunsAgainAfterTheExceptionIsCaught) {
+  VirtualScheduler s;
+  std::vector<int64_t> times;
+  s.schedule_every(10, [&] {
+    times.push_back(s.clock().now_us());
+    if (times.size() == 2) throw std::runtime_error("second run fails");
+  });
+  EXPECT_THROW(s.run_until(100), std::runtime_error);
+  EXPECT_EQ(s.clock().now_us(), 20);
+  EXPECT_EQ(s.pending(), 1u);
+  s.run_until(40);
+  EXPECT_EQ(times, (std::vector<int64_t>{10, 20, 30, 40}));
+}
+
 TEST(VirtualScheduler, RunUntilSetsTheClockAndRunsEventsAtTheEndButNotAfter) {
   VirtualScheduler s;
   EXPECT_EQ(s.run_until(1234), 0u);

@@ -1,7 +1,11 @@
 // TimerQueue, the deterministic core of both executors: (time, insertion) order, periodic
-// re-arming on schedule, cancellation (also of a timer whose callback is running).
+// re-arming on schedule, cancellation (also of a timer whose callback is running), ids that
+// stay unique when a freed slot is reused, and the order against a sorted reference.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -14,7 +18,7 @@ namespace {
 void drain(TimerQueue& queue, int64_t t_us, std::vector<std::string>& times) {
   while (auto due = queue.pop_due(t_us)) {
     times.push_back(std::to_string(due->time_us));
-    (*due->fn)();
+    due->fn();
     queue.finish(*due);
   }
 }
@@ -61,7 +65,7 @@ TEST(TimerQueue, PeriodicTimerKeepsItsScheduleAndIsRearmedBeforeItRuns) {
     times.push_back(due->time_us);
     // Re-armed already: the next period is pending while this callback would run.
     EXPECT_EQ(queue.next_time_us(), due->time_us + 250);
-    (*due->fn)();
+    due->fn();
     queue.finish(*due);
   }
   EXPECT_EQ(times, (std::vector<int64_t>{1000, 1250, 1500, 1750}));
@@ -137,6 +141,87 @@ TEST(TimerQueue, IdsAreUniqueAndIncreasing) {
     last = id;
   }
   EXPECT_EQ(queue.size(), 100u);
+}
+
+TEST(TimerQueue, AnOldIdCancelsNothingAfterItsSlotIsReused) {
+  TimerQueue queue;
+  const TimerId old_id = queue.add(10, 0, [] {});
+  queue.cancel(old_id);
+  bool ran = false;
+  const TimerId new_id = queue.add(20, 0, [&] { ran = true; });  // takes the freed slot
+  EXPECT_NE(new_id, old_id);
+  queue.cancel(old_id);
+  EXPECT_EQ(queue.size(), 1u);
+  std::vector<std::string> times;
+  drain(queue, 100, times);
+  EXPECT_TRUE(ran);
+  EXPECT_EQ(times, (std::vector<std::string>{"20"}));
+}
+
+TEST(TimerQueue, PeriodicCallbackMayCancelItselfAndStartAReplacementInItsSlot) {
+  TimerQueue queue;
+  std::vector<std::string> ran;
+  TimerId id = 0;
+  id = queue.add(0, 10, [&] {
+    ran.push_back("old");
+    queue.cancel(id);
+    queue.add(25, 10, [&] { ran.push_back("new"); });
+  });
+  std::vector<std::string> times;
+  drain(queue, 45, times);
+  EXPECT_EQ(ran, (std::vector<std::string>{"old", "new", "new", "new"}));
+  EXPECT_EQ(times, (std::vector<std::string>{"0", "25", "35", "45"}));
+  EXPECT_EQ(queue.size(), 1u) << "finishing the old timer leaves the new one alone";
+}
+
+TEST(TimerQueue, APeriodicTimerWhoseCallbackThrowsKeepsItsCallback) {
+  TimerQueue queue;
+  int runs = 0;
+  queue.add(0, 10, [&] {
+    if (++runs == 1) throw std::runtime_error("first run fails");
+  });
+  auto due = queue.pop_due(0);
+  ASSERT_TRUE(due.has_value());
+  EXPECT_THROW(due->fn(), std::runtime_error);
+  queue.finish(*due);  // as an executor does before passing the exception on
+  std::vector<std::string> times;
+  drain(queue, 20, times);
+  EXPECT_EQ(runs, 3);
+  EXPECT_EQ(times, (std::vector<std::string>{"10", "20"}));
+}
+
+// Many timers at few distinct times, two thirds of them cancelled (enough for the heap to drop
+// its cancelled entries in bulk): the run order is (time, insertion), as a stable sort gives.
+TEST(TimerQueue, OrderMatchesAStableSortWithManyTiesAndCancels) {
+  TimerQueue queue;
+  std::mt19937 rng(16);
+  std::uniform_int_distribution<int64_t> time_us(0, 20);
+  struct Added {
+    int64_t time_us;
+    int label;
+    TimerId id;
+  };
+  std::vector<Added> added;
+  std::vector<int> ran;
+  for (int label = 0; label < 3000; ++label) {
+    const int64_t t = time_us(rng);
+    added.push_back({t, label, queue.add(t, 0, [&ran, label] { ran.push_back(label); })});
+  }
+  std::vector<int> expected;
+  std::stable_sort(added.begin(), added.end(),
+                   [](const Added& a, const Added& b) { return a.time_us < b.time_us; });
+  for (const Added& a : added) {
+    if (a.label % 3 != 0) {
+      queue.cancel(a.id);
+    } else {
+      expected.push_back(a.label);
+    }
+  }
+  EXPECT_EQ(queue.size(), expected.size());
+  std::vector<std::string> times;
+  drain(queue, 100, times);
+  EXPECT_EQ(ran, expected);
+  EXPECT_EQ(queue.size(), 0u);
 }
 
 }  // namespace
