@@ -1,25 +1,86 @@
-// In-process bus delivering through the scheduler.
+// In-process bus delivering through the scheduler (see virtual_bus.hpp).
 #include "common/virtual_bus.hpp"
 
-#include <memory>
-#include <vector>
+#include <algorithm>
 
 namespace a3::common {
 
+VirtualBus::~VirtualBus() {
+  while (ring_count_ > 0) executor_.cancel(pop_delivery().event);
+}
+
 bool VirtualBus::publish_raw(const std::string& channel, const uint8_t* data, std::size_t size) {
   ++published_;
-  std::shared_ptr<const std::vector<uint8_t>> bytes;
+  std::size_t recipients = 0;
+  for (const auto& [id, sub] : subscribers_) recipients += sub.channel == channel ? 1 : 0;
+  if (recipients == 0) return true;
+  const uint32_t message = store_message(channel, data, size, recipients);
+  const int64_t now_us = executor_.clock().now_us();
   for (const auto& [id, sub] : subscribers_) {
     if (sub.channel != channel) continue;
-    if (!bytes) bytes = std::make_shared<const std::vector<uint8_t>>(data, data + size);
-    std::weak_ptr<RawHandler> weak = sub.handler;
-    executor_.schedule_at(executor_.clock().now_us(), [this, weak, channel, bytes] {
-      if (auto handler = weak.lock()) {
-        (*handler)(channel, bytes->data(), bytes->size(), executor_.clock().now_us());
-      }
-    });
+    // Events at one time run in the order scheduled, so each one delivers the oldest delivery.
+    const TimerId event = executor_.schedule_at(now_us, [this] { deliver_next(); });
+    push_delivery(Delivery{id, message, event});
   }
   return true;
+}
+
+uint32_t VirtualBus::store_message(const std::string& channel, const uint8_t* data,
+                                   std::size_t size, std::size_t deliveries) {
+  uint32_t index = 0;
+  if (free_messages_.empty()) {
+    index = static_cast<uint32_t>(messages_.size());
+    messages_.push_back(std::make_unique<Message>());
+  } else {
+    index = free_messages_.back();
+    free_messages_.pop_back();
+  }
+  Message& message = *messages_[index];
+  message.channel = channel;
+  message.bytes.assign(data, data + size);
+  message.deliveries_left = deliveries;
+  return index;
+}
+
+void VirtualBus::deliver_next() {
+  const Delivery delivery = pop_delivery();
+  // Released after the handler (which may publish): its bytes stay put while it reads them.
+  try {
+    hand_to_subscriber(delivery.subscriber, *messages_[delivery.message]);
+  } catch (...) {
+    release_message(delivery.message);
+    throw;
+  }
+  release_message(delivery.message);
+}
+
+void VirtualBus::hand_to_subscriber(SubscriptionId subscriber, const Message& message) {
+  auto it = subscribers_.find(subscriber);
+  if (it == subscribers_.end()) return;  // unsubscribed while the message was in flight
+  const std::shared_ptr<RawHandler> handler = it->second.handler;
+  (*handler)(message.channel, message.bytes.data(), message.bytes.size(), executor_.clock().now_us());
+}
+
+void VirtualBus::release_message(uint32_t index) {
+  if (--messages_[index]->deliveries_left == 0) free_messages_.push_back(index);
+}
+
+void VirtualBus::push_delivery(const Delivery& delivery) {
+  if (ring_count_ == ring_.size()) {
+    std::vector<Delivery> bigger(std::max<std::size_t>(16, 2 * ring_.size()));
+    for (std::size_t i = 0; i < ring_count_; ++i) bigger[i] = ring_[(ring_head_ + i) % ring_.size()];
+    ring_.swap(bigger);
+    ring_head_ = 0;
+  }
+  ring_[(ring_head_ + ring_count_) % ring_.size()] = delivery;
+  ++ring_count_;
+}
+
+VirtualBus::Delivery VirtualBus::pop_delivery() {
+  const Delivery delivery = ring_[ring_head_];
+  ring_head_ = (ring_head_ + 1) % ring_.size();
+  --ring_count_;
+  return delivery;
 }
 
 SubscriptionId VirtualBus::subscribe_raw(const std::string& channel, RawHandler handler) {

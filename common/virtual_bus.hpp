@@ -1,11 +1,18 @@
 // In-process bus for the virtual-time runtime: a publication is delivered to each
 // subscriber as a scheduler event at the current virtual time (after the events already
 // due then), carrying a copy of the LCM-encoded bytes. Deterministic FIFO per channel.
+// Allocation-free in steady state: copies go to reused message buffers, deliveries wait in
+// a reused ring in the order their events run, and each event's callback holds only `this`.
+// The ring relies on every delivery event being scheduled at the executor's current time
+// (so they run in the order scheduled) and on nothing but the bus's destructor cancelling
+// one (unsubscribe leaves the event, which then delivers nothing).
+// The executor must outlive the bus (the bus cancels its pending deliveries when it goes).
 #pragma once
 
 #include <map>
+#include <memory>
 #include <string>
-#include <unordered_map>
+#include <vector>
 
 #include "common/bus.hpp"
 #include "common/executor.hpp"
@@ -15,6 +22,9 @@ namespace a3::common {
 class VirtualBus final : public Bus {
  public:
   explicit VirtualBus(Executor& executor) : executor_(executor) {}
+  ~VirtualBus() override;
+  VirtualBus(const VirtualBus&) = delete;
+  VirtualBus& operator=(const VirtualBus&) = delete;
 
   bool publish_raw(const std::string& channel, const uint8_t* data, std::size_t size) override;
   SubscriptionId subscribe_raw(const std::string& channel, RawHandler handler) override;
@@ -25,12 +35,36 @@ class VirtualBus final : public Bus {
  private:
   struct Subscriber {
     std::string channel;
-    std::shared_ptr<RawHandler> handler;
+    std::shared_ptr<RawHandler> handler;  // shared: a handler may unsubscribe itself
   };
+  struct Message {
+    std::string channel;
+    std::vector<uint8_t> bytes;
+    std::size_t deliveries_left = 0;
+  };
+  struct Delivery {
+    SubscriptionId subscriber;
+    uint32_t message;  // index into messages_
+    TimerId event;
+  };
+
+  uint32_t store_message(const std::string& channel, const uint8_t* data, std::size_t size,
+                         std::size_t deliveries);
+  void deliver_next();
+  void hand_to_subscriber(SubscriptionId subscriber, const Message& message);
+  void release_message(uint32_t index);
+  void push_delivery(const Delivery& delivery);
+  Delivery pop_delivery();
+
   Executor& executor_;
   std::map<SubscriptionId, Subscriber> subscribers_;  // ordered: delivery order is stable
   SubscriptionId next_id_ = 1;
   uint64_t published_ = 0;
+  std::vector<std::unique_ptr<Message>> messages_;  // stable addresses while handlers run
+  std::vector<uint32_t> free_messages_;
+  std::vector<Delivery> ring_;  // pending deliveries, oldest at ring_head_
+  std::size_t ring_head_ = 0;
+  std::size_t ring_count_ = 0;
 };
 
 }  // namespace a3::common

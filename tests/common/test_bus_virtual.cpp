@@ -1,8 +1,12 @@
 // The typed Bus wrapper on VirtualBus: delivery through the scheduler at the current virtual
 // time, FIFO per channel, channel isolation, unsubscribe, copies of the bytes, and messages
-// that do not decode dropped and counted (never thrown into the scheduler).
+// that do not decode dropped and counted (never thrown into the scheduler). The raw bus:
+// one order across channels, a handler that publishes or throws, a bus destroyed with
+// deliveries pending.
 #include <gtest/gtest.h>
 
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -193,6 +197,102 @@ TEST_F(VirtualBusTest, NothingIsScheduledWithoutSubscribers) {
   EXPECT_TRUE(bus_.publish("A3_STATE", test::make_state(1)));
   EXPECT_EQ(scheduler_.pending(), 0u);
   EXPECT_EQ(bus_.messages_published(), 1u);
+}
+
+// Raw bytes {tag, fill...} of the given size, and the tag of received bytes.
+std::vector<uint8_t> tagged(uint8_t tag, std::size_t size) {
+  std::vector<uint8_t> bytes(size, static_cast<uint8_t>(tag ^ 0xFF));
+  bytes[0] = tag;
+  return bytes;
+}
+
+bool intact(const uint8_t* data, std::size_t size) {
+  for (std::size_t i = 1; i < size; ++i) {
+    if (data[i] != static_cast<uint8_t>(data[0] ^ 0xFF)) return false;
+  }
+  return true;
+}
+
+TEST_F(VirtualBusTest, DeliveriesRunInPublishOrderAcrossChannelsAndAroundAnUnsubscribe) {
+  std::vector<std::string> got;
+  auto record = [&got](const std::string& who) {
+    return [&got, who](const std::string& ch, const uint8_t* data, std::size_t, int64_t) {
+      got.push_back(who + ":" + ch + std::to_string(data[0]));
+    };
+  };
+  bus_.subscribe_raw("A", record("x"));
+  const SubscriptionId leaving = bus_.subscribe_raw("B", record("y"));
+  bus_.subscribe_raw("B", record("z"));
+  for (uint8_t i = 1; i <= 2; ++i) {
+    const auto a = tagged(i, 4), b = tagged(static_cast<uint8_t>(10 + i), 4);
+    bus_.publish_raw("A", a.data(), a.size());
+    bus_.publish_raw("B", b.data(), b.size());
+  }
+  bus_.unsubscribe(leaving);  // two deliveries to it are in flight
+  const auto last = tagged(3, 4);
+  bus_.publish_raw("A", last.data(), last.size());
+  scheduler_.run_until(0);
+  EXPECT_EQ(got, (std::vector<std::string>{"x:A1", "z:B11", "x:A2", "z:B12", "x:A3"}));
+  EXPECT_EQ(scheduler_.pending(), 0u);
+}
+
+// A handler that publishes (more, and larger, messages than the one it reads) while it still
+// reads its own: the bytes it was given stay as they were sent until it returns.
+TEST_F(VirtualBusTest, AHandlerThatPublishesKeepsReadingItsOwnBytes) {
+  std::vector<int> tags;
+  int corrupted = 0;
+  bus_.subscribe_raw("A", [&](const std::string&, const uint8_t* data, std::size_t size, int64_t) {
+    tags.push_back(data[0]);
+    if (data[0] < 5) {
+      for (uint8_t k = 1; k <= 3; ++k) {
+        const auto more = tagged(static_cast<uint8_t>(data[0] * 3 + k), 64 * k);
+        bus_.publish_raw("A", more.data(), more.size());
+      }
+    }
+    corrupted += intact(data, size) ? 0 : 1;
+  });
+  const auto first = tagged(1, 8);
+  bus_.publish_raw("A", first.data(), first.size());
+  scheduler_.run_until(0);
+  EXPECT_EQ(tags, (std::vector<int>{1, 4, 5, 6, 13, 14, 15}));
+  EXPECT_EQ(corrupted, 0);
+}
+
+TEST_F(VirtualBusTest, AHandlerThatThrowsLeavesTheOtherDeliveriesInOrder) {
+  std::vector<int> tags;
+  bus_.subscribe_raw("A", [&](const std::string&, const uint8_t* data, std::size_t, int64_t) {
+    tags.push_back(data[0]);
+    if (data[0] == 2) throw std::runtime_error("handler fails");
+  });
+  for (uint8_t i = 1; i <= 4; ++i) {
+    const auto bytes = tagged(i, 16);
+    bus_.publish_raw("A", bytes.data(), bytes.size());
+  }
+  EXPECT_THROW(scheduler_.run_until(0), std::runtime_error);
+  scheduler_.run_until(0);
+  const auto fifth = tagged(5, 16);
+  bus_.publish_raw("A", fifth.data(), fifth.size());
+  scheduler_.run_until(0);
+  EXPECT_EQ(tags, (std::vector<int>{1, 2, 3, 4, 5}));
+}
+
+// The bus's events hold only a pointer to it: going away, it cancels them, so the scheduler
+// neither runs them nor holds anything of the bus afterwards.
+TEST_F(VirtualBusTest, ABusDestroyedWithDeliveriesPendingCancelsThem) {
+  int delivered = 0, later = 0;
+  {
+    VirtualBus doomed(scheduler_);
+    doomed.subscribe_raw("A", [&](const std::string&, const uint8_t*, std::size_t, int64_t) { ++delivered; });
+    doomed.subscribe_raw("A", [&](const std::string&, const uint8_t*, std::size_t, int64_t) { ++delivered; });
+    const auto bytes = tagged(1, 16);
+    for (int i = 0; i < 3; ++i) doomed.publish_raw("A", bytes.data(), bytes.size());
+    scheduler_.schedule_at(0, [&] { ++later; });
+    EXPECT_EQ(scheduler_.pending(), 7u);
+  }
+  EXPECT_EQ(scheduler_.pending(), 1u);
+  scheduler_.run_until(10);
+  EXPECT_EQ(delivered, 0);
+  EXPECT_EQ(later, 1);
 }
 
 }  // namespace
