@@ -1,6 +1,6 @@
 // The plotted flight: take-off from the ground, climb to 20 m, legs east and north with yaw
 // turns and a climb, back home, descent and a gentle landing (flight_controller.hpp's
-// demo_plan), flown by the controller node against the dynamics node (CVODE) in virtual time,
+// demo_plan), flown by the controller node against the dynamics node (RK4 by default) in virtual time,
 // in a 5 m/s wind from 240° with Dryden turbulence. Writes one CSV row per published state
 // (10 ms) for plot_flight.gp and prints a summary (touchdown speed, battery used, events).
 #include <CLI/CLI.hpp>
@@ -23,11 +23,11 @@ int main(int argc, char** argv) {
   using namespace a3::bench;
   CLI::App app("Fly the demonstration flight in virtual time and write its trajectory as CSV.");
   std::string out_csv = "dynamics_flight.csv";
-  std::string integrator = "cvode";
+  std::string integrator = "rk4";
   double wind_mps = 5.0, wind_dir_deg = 240.0;
   uint64_t seed = 3;
   app.add_option("--csv", out_csv, "output CSV (default dynamics_flight.csv)");
-  app.add_option("--integrator", integrator, "cvode (default) or ode")->check(CLI::IsMember({"cvode", "ode"}));
+  app.add_option("--integrator", integrator, "rk4 (default), cvode or ode")->check(CLI::IsMember({"rk4", "cvode", "ode"}));
   app.add_option("--wind-mps", wind_mps, "mean wind speed (default 5)")->check(CLI::NonNegativeNumber);
   app.add_option("--wind-dir-deg", wind_dir_deg, "direction the wind blows from (default 240)");
   app.add_option("--seed", seed, "turbulence seed (default 3)");

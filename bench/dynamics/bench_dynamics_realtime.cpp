@@ -1,4 +1,4 @@
-// Real-time pacing of the dynamics node: the node (CVODE by default) and the patrol flight's
+// Real-time pacing of the dynamics node: the node (RK4 by default) and the patrol flight's
 // controller each in their own thread on LCM UDP multicast, paced on the wall clock at a
 // real-time factor (1.0 by default), while child processes burn CPU (one by default) on this
 // 2-core machine. Prints the lateness of the dynamics steps against their schedule (p50, p99,
@@ -141,7 +141,7 @@ int main(int argc, char** argv) {
   double duration_s = 60.0;
   double rtf = 1.0;
   int burners = 1;
-  std::string integrator = "cvode";
+  std::string integrator = "rk4";
   std::string url = "udpm://239.255.76.67:7691?ttl=0";
   std::string dump;
   int rt_priority = 0;
@@ -149,7 +149,7 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--rtf", rtf, "real-time factor (default 1)")->check(CLI::PositiveNumber);
   app.add_option("--burners", burners, "CPU-burning child processes (default 1)")->check(CLI::Range(0, 16));
-  app.add_option("--integrator", integrator, "cvode (default) or ode")->check(CLI::IsMember({"cvode", "ode"}));
+  app.add_option("--integrator", integrator, "rk4 (default), cvode or ode")->check(CLI::IsMember({"rk4", "cvode", "ode"}));
   app.add_option("--lcm-url", url, "LCM URL (default: a port of its own, away from other runs)");
   app.add_option("--dump", dump, "write each step's lateness (us) and each state's arrival lateness to this CSV");
   app.add_option("--rt-priority", rt_priority,

@@ -2,9 +2,11 @@
 // then legs, turns and climbs repeated every 40 s) flown by a controller node publishing rotor
 // commands at 100 Hz, the dynamics node publishing A3_STATE at 100 Hz, both on
 // common::VirtualRuntime (one thread, LCM-encoded bytes on the in-process bus). Prints simulated
-// seconds per wall second for CVODE and ODE, calm and in turbulent wind, the CVODE statistics
-// per simulated second, and the same integrators stepped directly with the same controller (no
-// node, no bus) to show what the bus and the nodes cost. A last variant holds a constant hover
+// seconds per wall second for fixed-step RK4 (the default), CVODE and ODE, calm and in turbulent
+// wind, the solver statistics per simulated second, and the same integrators stepped directly
+// with the same controller (no node, no bus) to show what the bus and the nodes cost; SUNDIALS
+// ARKODE's ERKStep with the same RK4 table and steps is measured alone (arkode_erk_integrator.hpp),
+// the library alternative to the hand-written RK4. The last variants hold a constant hover
 // command from an ActuatorScriptNode: CVODE's best case, no restarts. With --csv it also writes
 // the first variant's flight (commands and states as they went over the bus) for the SciPy
 // comparison (scipy_model.py).
@@ -20,12 +22,14 @@
 #include <string>
 #include <vector>
 
+#include "bench/dynamics/arkode_erk_integrator.hpp"
 #include "bench/dynamics/bus_recorder.hpp"
 #include "bench/dynamics/flight_controller.hpp"
 #include "common/runtime.hpp"
 #include "dynamics/actuator_script_node.hpp"
 #include "dynamics/cvode_integrator.hpp"
 #include "dynamics/dynamics_node.hpp"
+#include "dynamics/rk4_integrator.hpp"
 
 namespace a3::bench {
 namespace {
@@ -35,13 +39,33 @@ struct Variant {
   dynamics::IntegratorKind kind;
   bool turbulence;
   bool hover_script = false;  // constant hover command from an ActuatorScriptNode, airborne
+  bool arkode_erk = false;    // ARKODE ERKStep instead of `kind`, measured alone only
 };
+
+// Steps and right-hand-side evaluations of the solver, for the statistics columns.
+struct SolverStats {
+  long steps = 0, rhs_evaluations = 0, error_test_failures = 0, convergence_failures = 0, restarts = 0;
+  bool known = false;
+};
+
+SolverStats stats_of(const dynamics::Integrator& integrator) {
+  SolverStats out;
+  if (const auto* cv = dynamic_cast<const dynamics::CvodeIntegrator*>(&integrator)) {
+    const auto s = cv->stats();
+    out = {s.steps, s.rhs_evaluations, s.error_test_failures, s.convergence_failures, s.restarts, true};
+  } else if (const auto* rk = dynamic_cast<const dynamics::Rk4Integrator*>(&integrator)) {
+    out = {rk->stats().steps, rk->stats().rhs_evaluations, 0, 0, 0, true};
+  } else if (const auto* erk = dynamic_cast<const ArkodeErkIntegrator*>(&integrator)) {
+    out = {erk->steps(), 4 * erk->steps(), 0, 0, 0, true};
+  }
+  return out;
+}
 
 struct Result {
   double wall_s = 0.0;
   double cpu_s = 0.0;  // of this process: what the run costs without other load on the machine
   a3lcm::vehicle_state_t last{};
-  dynamics::CvodeIntegrator::Stats stats;
+  SolverStats stats;
   uint64_t states = 0;
 };
 
@@ -97,7 +121,7 @@ Result run_node(const Variant& v, double sim_s, double rtol, BusRecorder* keep) 
   r.cpu_s = cpu_now_s() - c0;
   r.last = recorder.last_state();
   r.states = recorder.state_count();
-  if (const auto* cv = dynamic_cast<const dynamics::CvodeIntegrator*>(&dyn.integrator())) r.stats = cv->stats();
+  r.stats = stats_of(dyn.integrator());
   return r;
 }
 
@@ -106,7 +130,9 @@ Result run_integrator(const Variant& v, double sim_s, double rtol) {
   const dynamics::DynamicsNodeConfig config = config_for(v, rtol);
   const dynamics::QuadrotorModel model(config.params);
   dynamics::WindField wind(config.mean_wind_W_mps, config.turbulence, config.seed);
-  auto integrator = dynamics::make_integrator(v.kind, model, wind, config.integrator_options);
+  std::unique_ptr<dynamics::Integrator> integrator =
+      v.arkode_erk ? std::make_unique<ArkodeErkIntegrator>(model, wind)
+                   : dynamics::make_integrator(v.kind, model, wind, config.integrator_options);
   integrator->reset(config.initial_state, 0.0);
   FlightController controller(config.params, patrol_plan(sim_s));
   const double hover = model.hover_throttle();
@@ -123,7 +149,8 @@ Result run_integrator(const Variant& v, double sim_s, double rtol) {
   Result r;
   r.wall_s = now_s() - t0;
   r.cpu_s = cpu_now_s() - c0;
-  if (const auto* cv = dynamic_cast<const dynamics::CvodeIntegrator*>(integrator.get())) r.stats = cv->stats();
+  r.stats = stats_of(*integrator);
+  for (int i = 0; i < 3; ++i) r.last.p_W_m[i] = integrator->state().p_W_m[i];
   return r;
 }
 
@@ -190,23 +217,29 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   const std::vector<Variant> variants = {
+      {"rk4 calm", dynamics::IntegratorKind::kRk4, false},
+      {"rk4 turbulence", dynamics::IntegratorKind::kRk4, true},
+      {"arkode-erk rk4 calm", dynamics::IntegratorKind::kRk4, false, false, true},
+      {"arkode-erk rk4 turbulence", dynamics::IntegratorKind::kRk4, true, false, true},
       {"cvode calm", dynamics::IntegratorKind::kCvode, false},
       {"cvode turbulence", dynamics::IntegratorKind::kCvode, true},
       {"ode calm", dynamics::IntegratorKind::kOde, false},
       {"ode turbulence", dynamics::IntegratorKind::kOde, true},
+      {"rk4 hover, constant cmd", dynamics::IntegratorKind::kRk4, false, true},
       {"cvode hover, constant cmd", dynamics::IntegratorKind::kCvode, false, true},
       {"ode hover, constant cmd", dynamics::IntegratorKind::kOde, false, true},
   };
 
   std::printf("dynamics node in virtual time: closed-loop patrol flight (take-off, 40 s cycle of legs, turns,\n"
               "climbs), rotor commands and A3_STATE at 100 Hz through the virtual bus; %.0f simulated s per run,\n"
-              "median of %d; CVODE rtol %g, ODE step 0.5 ms\n", sim_s, repeats, rtol);
+              "median of %d; RK4 step %.1f ms (ARKODE ERKStep the same), CVODE rtol %g, ODE step 0.5 ms\n", sim_s, repeats,
+              1e3 * dynamics::default_rk4_step_s(dynamics::default_vehicle_params()), rtol);
   std::printf("turbulence: mean wind 8 m/s from 240 deg, Dryden; hover: constant command from a script node\n");
   std::printf("node: controller + dynamics nodes on the virtual runtime, simulated s per wall s (and per CPU s\n"
               "of this process: the figure without other load); alone: controller and integrator stepped\n"
               "directly, no bus; load average %s\n", load_average().c_str());
   std::printf(
-              "CVODE per simulated second: steps, RHS evaluations, error-test failures, nonlinear\n"
+              "per simulated second: steps, RHS evaluations; CVODE also error-test failures, nonlinear\n"
               "convergence failures, restarts (CVodeReInit: command changes, contact, renormalisation)\n\n");
   std::printf("%-27s %10s %10s %10s | %8s %8s %8s %8s %8s | %s\n", "variant", "node xRT", "(CPU)", "alone xRT",
               "steps/s", "RHS/s", "etf/s", "ncf/s", "restart/s", "final position (m)");
@@ -214,24 +247,32 @@ int main(int argc, char** argv) {
   for (const Variant& v : variants) {
     if (!only.empty() && v.name.find(only) == std::string::npos) continue;
     if (first == nullptr) first = &v;
-    const Result node = median_of(repeats, [&] { return run_node(v, sim_s, rtol, nullptr); });
+    const Result node = v.arkode_erk ? Result{} : median_of(repeats, [&] { return run_node(v, sim_s, rtol, nullptr); });
     const Result alone = median_of(repeats, [&] { return run_integrator(v, sim_s, rtol); });
     const auto expected_states = static_cast<uint64_t>(std::llround(sim_s * 100)) + 1;
-    if (node.states != expected_states) {
+    if (!v.arkode_erk && node.states != expected_states) {
       std::fprintf(stderr, "%s: %llu states published, expected %llu\n", v.name.c_str(),
                    static_cast<unsigned long long>(node.states), static_cast<unsigned long long>(expected_states));
       return 1;
     }
-    std::printf("%-27s %9.0fx %9.0fx %9.0fx |", v.name.c_str(), sim_s / node.wall_s, sim_s / node.cpu_s,
-                sim_s / alone.wall_s);
+    if (v.arkode_erk) {
+      std::printf("%-27s %10s %10s %9.0fx |", v.name.c_str(), "-", "-", sim_s / alone.wall_s);
+    } else {
+      std::printf("%-27s %9.0fx %9.0fx %9.0fx |", v.name.c_str(), sim_s / node.wall_s, sim_s / node.cpu_s,
+                  sim_s / alone.wall_s);
+    }
+    const SolverStats& s = v.arkode_erk ? alone.stats : node.stats;
     if (v.kind == dynamics::IntegratorKind::kCvode) {
-      const auto& s = node.stats;
       std::printf(" %8.0f %8.0f %8.1f %8.1f %9.1f |", s.steps / sim_s, s.rhs_evaluations / sim_s,
                   s.error_test_failures / sim_s, s.convergence_failures / sim_s, s.restarts / sim_s);
+    } else if (s.known) {
+      std::printf(" %8.0f %8.0f %8s %8s %9s |", s.steps / sim_s, s.rhs_evaluations / sim_s, "-", "-", "-");
     } else {
       std::printf(" %8s %8s %8s %8s %9s |", "-", "-", "-", "-", "-");
     }
-    std::printf(" (%.1f, %.1f, %.1f)\n", node.last.p_W_m[0], node.last.p_W_m[1], node.last.p_W_m[2]);
+    // ARKODE runs alone only: its final position is the alone run's, comparable with RK4's node run (same steps).
+    const a3lcm::vehicle_state_t& last = v.arkode_erk ? alone.last : node.last;
+    std::printf(" (%.4f, %.4f, %.4f)\n", last.p_W_m[0], last.p_W_m[1], last.p_W_m[2]);
     std::fflush(stdout);
   }
 

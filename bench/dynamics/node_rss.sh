@@ -3,13 +3,13 @@
 # time with its built-in climb demo publishing rotor commands (so it integrates and publishes
 # at 100 Hz), samples /proc/PID/status while it runs, and prints the last VmRSS and the peak
 # (VmHWM). Usage: bench/dynamics/node_rss.sh [BUILD_DIR] [SECONDS] [INTEGRATOR]
-#   defaults: build/ in the repository, 10 s, cvode
+#   defaults: build/ in the repository, 10 s, rk4
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 repo=$(cd "$here/../.." && pwd)
 build=${1:-$repo/build}
 seconds=${2:-10}
-integrator=${3:-cvode}
+integrator=${3:-rk4}
 # A port of its own: this run neither hears nor disturbs other LCM runs on the host.
 "$build/a3rig" node dynamics --integrator "$integrator" --demo climb --duration-s "$seconds" \
   --report-every-s 1000 --lcm-url 'udpm://239.255.76.67:7692?ttl=0' 2>/dev/null &

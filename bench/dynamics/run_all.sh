@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs every dynamics benchmark and prints its figures (see README.md beside this file):
-# virtual-time speed (CVODE, ODE, calm and turbulent) with CVODE statistics, the SciPy
+# virtual-time speed (RK4, ARKODE ERK, CVODE, ODE, calm and turbulent) with solver statistics, the SciPy
 # baseline on the same flight, real-time jitter and achieved real-time factor under CPU load,
 # the node's resident memory, and the trajectory plot (docs/figures/dynamics_flight.png).
 # Usage: bench/dynamics/run_all.sh [--quick] [BUILD_DIR]
