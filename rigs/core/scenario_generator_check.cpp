@@ -94,9 +94,8 @@ void fly_objective(RouteWalk& walk, const agent::Objective& o, double cruise_m, 
 }
 
 std::string wind_problem(const Scenario& s, const MissionCheck& m) {
-  const nlohmann::json env = s.initial_state.value("env", nlohmann::json::object());
-  const double wind = env.value("wind_mps", 0.0);
-  const double gust = env.value("gust_mps", wind);
+  const double wind = s.start.env.wind_mps;
+  const double gust = s.start.env.gust_mps.value_or(wind);
   if (m.max_airspeed_mps - wind < kMinGroundSpeed_mps || gust > 0.9 * m.max_airspeed_mps) {
     return text("wind %.1f m/s gusting %.1f m/s is more than the airframe can fly (top airspeed %.1f m/s at the "
                 "tilt limit)", wind, gust, m.max_airspeed_mps);
@@ -117,7 +116,7 @@ MissionCheck check_generated_mission(const Scenario& s) {
   const agent::ToolServerConfig& t = c.tool_server;
   MissionCheck m;
   m.max_airspeed_mps = max_airspeed_mps(c);
-  const double wind = s.initial_state.value("env", nlohmann::json::object()).value("wind_mps", 0.0);
+  const double wind = s.start.env.wind_mps;
   m.ground_speed_mps = std::min(s.mission.cruise_speed_mps, m.max_airspeed_mps - wind);
   if (m.problem = wind_problem(s, m); !m.problem.empty()) return m;
 
