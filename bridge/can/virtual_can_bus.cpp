@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <stdexcept>
 #include <vector>
 
@@ -11,17 +10,28 @@ namespace a3::bridge {
 
 struct VirtualCanBus::Impl {
   struct Pending {
+    uint32_t key;  // arbitration key
+    uint64_t seq;  // FIFO among equal keys
     CanFrame frame;
     int64_t queued_ns;
   };
+  // Ordered by (arbitration key, sequence): front() of a port's heap is what it offers.
+  static bool after(const Pending& a, const Pending& b) {
+    return a.key != b.key ? a.key > b.key : a.seq > b.seq;
+  }
   struct Port {
     std::string name;
     bool started = false;
     common::Executor* executor = nullptr;
     CanFrameHandler handler;
-    // Ordered by (arbitration key, sequence): the head is what this port offers the bus.
-    std::map<std::pair<uint32_t, uint64_t>, Pending> queue;
+    std::vector<Pending> queue;  // a binary heap on after(); its storage is reused
     CanBusStats stats;
+  };
+  // The frame on the wire: one at a time.
+  struct InFlight {
+    CanFrame frame;
+    const Port* sender = nullptr;
+    int64_t end_ns = 0;
   };
 
   common::Executor& executor;
@@ -32,6 +42,11 @@ struct VirtualCanBus::Impl {
   int64_t bus_free_ns = 0;
   uint64_t sequence = 0;
   VirtualCanBusStats stats;
+  InFlight in_flight;
+  // The bus's pending events, cancelled when it goes; their callbacks capture only `this`,
+  // small enough for std::function to hold without allocating.
+  common::TimerId arbitration_timer = 0;
+  common::TimerId finish_timer = 0;
 
   Impl(common::Executor& e, VirtualCanBusConfig c) : executor(e), config(c) {
     if (!(config.bit_rate_bps >= 1000.0 && config.bit_rate_bps <= 10e6)) {
@@ -42,21 +57,25 @@ struct VirtualCanBus::Impl {
       throw std::invalid_argument("VirtualCanBus: tx_queue_frames must be at least 1");
     }
   }
+  ~Impl() {
+    if (arbitration_scheduled) executor.cancel(arbitration_timer);
+    if (busy) executor.cancel(finish_timer);
+  }
 
   int64_t now_ns() const { return executor.clock().now_us() * 1000; }
 
-  int64_t frame_ns(const CanFrame& frame) const {
-    const double bits = can_frame_bits(frame, config.stuffing);
-    return static_cast<int64_t>(std::llround(bits * 1e9 / config.bit_rate_bps));
+  int64_t bits_ns(unsigned bits) const {
+    return static_cast<int64_t>(std::llround(static_cast<double>(bits) * 1e9 / config.bit_rate_bps));
   }
+  int64_t frame_ns(const CanFrame& frame) const { return bits_ns(can_frame_bits(frame, config.stuffing)); }
 
   bool enqueue(Port& port, const CanFrame& frame) {
     if (port.queue.size() >= config.tx_queue_frames) {
       ++port.stats.send_refused;
       return false;
     }
-    port.queue.emplace(std::make_pair(can_arbitration_key(frame), sequence++),
-                       Pending{frame, now_ns()});
+    port.queue.push_back(Pending{can_arbitration_key(frame), sequence++, frame, now_ns()});
+    std::push_heap(port.queue.begin(), port.queue.end(), after);
     ++port.stats.frames_sent;
     port.stats.tx_queue_peak = std::max(port.stats.tx_queue_peak, port.queue.size());
     if (!busy && !arbitration_scheduled) schedule_arbitration(std::max(now_ns(), bus_free_ns));
@@ -66,48 +85,47 @@ struct VirtualCanBus::Impl {
   void schedule_arbitration(int64_t at_ns) {
     arbitration_scheduled = true;
     // Frames sent at this same instant (later in this event round) join the arbitration.
-    std::weak_ptr<Impl> weak = self;
-    executor.schedule_at((at_ns + 999) / 1000, [weak, at_ns] {
-      if (auto impl = weak.lock()) impl->arbitrate(at_ns);
+    arbitration_timer = executor.schedule_at((at_ns + 999) / 1000, [this, at_ns] {
+      arbitration_scheduled = false;
+      arbitrate(at_ns);
     });
   }
 
-  void arbitrate(int64_t start_ns) {
-    arbitration_scheduled = false;
-    // A frame queued from a receive handler schedules an arbitration, and finish() then
-    // arbitrates directly: the later of the two must not put a second frame on the wire.
-    if (busy) return;
+  Port* arbitration_winner() const {
     Port* winner = nullptr;
     for (Port* port : ports) {
       if (port->queue.empty()) continue;
-      if (winner == nullptr || port->queue.begin()->first.first < winner->queue.begin()->first.first) {
-        winner = port;
-      }
+      if (winner == nullptr || port->queue.front().key < winner->queue.front().key) winner = port;
     }
+    return winner;
+  }
+
+  // A frame queued from a receive handler schedules an arbitration, and finish() then
+  // arbitrates directly: the later of the two must not put a second frame on the wire.
+  void arbitrate(int64_t start_ns) {
+    if (busy) return;
+    Port* winner = arbitration_winner();
     if (winner == nullptr) return;
-    const auto head = winner->queue.begin();
-    const CanFrame frame = head->second.frame;
-    const int64_t delay = start_ns - head->second.queued_ns;
-    winner->queue.erase(head);
+    std::pop_heap(winner->queue.begin(), winner->queue.end(), after);
+    const Pending head = winner->queue.back();
+    winner->queue.pop_back();
+    const int64_t delay = start_ns - head.queued_ns;
     stats.max_queue_delay_ns = std::max(stats.max_queue_delay_ns, delay);
     stats.total_queue_delay_ns += delay;
     if (stats.first_frame_start_ns < 0) stats.first_frame_start_ns = start_ns;
 
-    const int64_t duration = frame_ns(frame);
-    const int64_t end_ns = start_ns + duration;
+    const unsigned bits = can_frame_bits(head.frame, config.stuffing);
+    const int64_t duration = bits_ns(bits);
+    in_flight = InFlight{head.frame, winner, start_ns + duration};
     busy = true;
-    bus_free_ns = end_ns;
+    bus_free_ns = in_flight.end_ns;
     ++stats.frames;
-    stats.bits += can_frame_bits(frame, config.stuffing);
+    stats.bits += bits;
     stats.busy_ns += duration;
-    std::weak_ptr<Impl> weak = self;
-    executor.schedule_at((end_ns + 999) / 1000, [weak, frame, winner, end_ns] {
-      if (auto impl = weak.lock()) impl->finish(frame, winner, end_ns);
-    });
+    finish_timer = executor.schedule_at((in_flight.end_ns + 999) / 1000, [this] { finish(); });
   }
 
-  void finish(const CanFrame& frame, const Port* sender, int64_t end_ns) {
-    busy = false;
+  void deliver(const CanFrame& frame, const Port* sender) {
     const int64_t rx_time_us = executor.clock().now_us();
     for (Port* port : ports) {
       if (port == sender || !port->started) continue;
@@ -121,16 +139,20 @@ struct VirtualCanBus::Impl {
                                     });
       }
     }
+  }
+
+  void finish() {
+    busy = false;
+    const InFlight done = in_flight;  // handlers may put the next frame on the wire
+    deliver(done.frame, done.sender);
     // The next frame starts right after this one's intermission (no rounding drift).
     for (Port* port : ports) {
       if (!port->queue.empty()) {
-        arbitrate(end_ns);
+        arbitrate(done.end_ns);
         return;
       }
     }
   }
-
-  std::weak_ptr<Impl> self;
 };
 
 namespace {
@@ -180,9 +202,7 @@ double VirtualCanBusStats::load(int64_t now_us) const {
 }
 
 VirtualCanBus::VirtualCanBus(common::Executor& executor, VirtualCanBusConfig config)
-    : impl_(std::make_shared<Impl>(executor, config)) {
-  impl_->self = impl_;
-}
+    : impl_(std::make_shared<Impl>(executor, config)) {}
 
 VirtualCanBus::~VirtualCanBus() = default;
 

@@ -1,8 +1,9 @@
 // The virtual CAN bus: frames take their wire time (bit stuffing included), the lowest ID
-// wins arbitration, a busy bus makes frames wait, load is measured, and DroneCAN nodes talk
-// over it in virtual time.
+// wins arbitration, a busy bus makes frames wait, load is measured, a bus destroyed with
+// events pending cancels them, and DroneCAN nodes talk over it in virtual time.
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <vector>
 
 #include "bridge/can/frame_timing.hpp"
@@ -176,6 +177,30 @@ TEST_F(VirtualBusTest, AnOverloadedBusQueuesThenRefuses) {
   EXPECT_EQ(sender->stats().send_refused, static_cast<uint64_t>(refused));
   EXPECT_EQ(sender->stats().tx_queue_peak, 16u);
   EXPECT_GT(bus.stats().load(200'000), 0.98);
+}
+
+// The bus's events hold only a pointer to it: going away with a frame on the wire and an
+// arbitration pending, it cancels both; its ports then refuse frames.
+TEST_F(VirtualBusTest, ABusDestroyedWithAFrameOnTheWireCancelsItsEvents) {
+  std::vector<Received> seen;
+  std::unique_ptr<CanBus> sender, listener;
+  {
+    VirtualCanBus bus(scheduler_, {});
+    sender = bus.attach("sender");
+    listener = bus.attach("listener");
+    listen(*listener, seen);
+    sender->send(frame(0x10000001, 8));
+    scheduler_.run_until(0);  // the arbitration: the frame is on the wire until ~130 us
+    scheduler_.schedule_at(50, [&] { sender->send(frame(0x10000002, 8)); });
+    scheduler_.run_until(50);  // queued behind it
+    ASSERT_EQ(scheduler_.pending(), 1u) << "the end of the frame on the wire";
+    listener->send(frame(0x08000001, 1));  // and a frame of another port
+  }
+  EXPECT_EQ(scheduler_.pending(), 0u);
+  scheduler_.run_until(10'000);
+  EXPECT_TRUE(seen.empty());
+  EXPECT_FALSE(sender->send(frame(0x10000003, 8)));
+  EXPECT_EQ(sender->stats().send_refused, 1u);
 }
 
 TEST_F(VirtualBusTest, DroneCanNodesExchangeMultiFrameTransfersInVirtualTime) {
