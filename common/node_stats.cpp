@@ -51,7 +51,7 @@ a3lcm::node_stats_t make_node_stats(const std::string& node, int64_t utime_us, b
   m.wall_utime_us = WallClock::monotonic_now_ns() / 1000;
   m.node = node;
   m.pid = static_cast<int32_t>(::getpid());
-  m.final = final;
+  m.is_final = final;
   for (const auto& [name, value] : counters.snapshot()) {
     m.counter_names.push_back(name);
     m.counter_values.push_back(static_cast<int64_t>(value));

@@ -43,6 +43,12 @@ packages=(
   python3-scipy python3-numpy                    # SciPy baseline of the dynamics benchmark (bench/dynamics)
   iproute2                                       # multicast loopback route for LCM's UDP transport
   nodejs                                         # official OpenAI / MCP SDK clients in tests/npm (npm: below)
+  libjs-d3                                       # d3, inlined into each episode report (a3rig report)
+  chromium python3-pil fonts-dejavu-core         # tests/report: reports rendered headless, screenshots checked
+  default-jdk-headless default-jre liblcm-java   # Java LCM types jar (javac, lcm.jar) for scripts/lcm-spy.sh (a GUI: a full JRE)
+  libjchart2d-java                               # lcm-spy's charts (liblcm-java does not depend on it)
+  xvfb xauth                                     # lcm-spy and lcm-logplayer-gui headless in tests/tools (xvfb-run)
+  strace dpkg-dev                                # tests/package: the installed a3rig's file accesses; cpack's dpkg-shlibdeps
   # Real SocketCAN for the CAN tests on kernels without it (scripts/vcan-vm): QEMU boots
   # Debian's kernel (fetched with apt-get download, not installed) from a busybox
   # initramfs; can-utils gives candump/cansend; python3 unpacks the kernel image.

@@ -38,8 +38,8 @@ void EpisodeRecorderNode::start(common::Executor&, common::Bus& bus) {
   bus.subscribe<a3lcm::node_stats_t>(ch::kNodeStats, [this](const a3lcm::node_stats_t& m, int64_t) {
     std::lock_guard<std::mutex> lock(mutex_);
     NodeStatsRecord& n = rec_.nodes[m.node];
-    if (n.final && !m.final) return;  // a late periodic report after the totals
-    n = {common::node_stats_json(m), m.wall_utime_us, m.utime_us, m.pid, m.final != 0};
+    if (n.final && !m.is_final) return;  // a late periodic report after the totals
+    n = {common::node_stats_json(m), m.wall_utime_us, m.utime_us, m.pid, m.is_final != 0};
   });
   bus.subscribe<a3lcm::safety_event_t>(ch::kSafety, [this](const a3lcm::safety_event_t& e, int64_t) {
     std::lock_guard<std::mutex> lock(mutex_);

@@ -124,7 +124,7 @@ TEST(NodeStats, DottedCounterNamesNestAndTimingsTravel) {
   set.add("records") += 1;
   const a3lcm::node_stats_t m = make_node_stats("linkemu", 42, true, set, {{"lateness_p99_us", 12.5}});
   EXPECT_EQ(m.node, "linkemu");
-  EXPECT_TRUE(m.final);
+  EXPECT_TRUE(m.is_final);
   const nlohmann::json j = node_stats_json(m);
   EXPECT_EQ(j["counters"]["up"]["dropped"]["queue_full"], 3);
   EXPECT_EQ(j["counters"]["up"]["delivered"], 7);

@@ -255,7 +255,7 @@ struct Case<a3lcm::node_stats_t> {
     m.wall_utime_us = kBigTime * 2 + 9;
     m.node = "linkemu";
     m.pid = 4242;
-    m.final = true;
+    m.is_final = true;
     m.counter_names = {"up.delivered", "records"};
     m.counter_values = {kBigTime, 3};
     m.n_counters = 2;
@@ -269,7 +269,7 @@ struct Case<a3lcm::node_stats_t> {
     EXPECT_EQ(a.wall_utime_us, b.wall_utime_us);
     EXPECT_EQ(a.node, b.node);
     EXPECT_EQ(a.pid, b.pid);
-    EXPECT_EQ(a.final, b.final);
+    EXPECT_EQ(a.is_final, b.is_final);
     EXPECT_EQ(a.counter_names, b.counter_names);
     EXPECT_EQ(a.counter_values, b.counter_values);
     EXPECT_EQ(a.timing_names, b.timing_names);
