@@ -13,6 +13,9 @@ std::filesystem::path default_shared_dir() {
   if (fs::is_directory(here, ec)) return here;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) {
+    // Installed (<prefix>/bin/a3rig beside <prefix>/share/a3rig): never the build machine's paths.
+    const fs::path installed_data = exe.parent_path().parent_path() / "share" / "a3rig";
+    if (exe.parent_path().filename() == "bin" && fs::is_directory(installed_data, ec)) return installed_data / "shared";
     const fs::path beside_repo = exe.parent_path().parent_path().parent_path() / "shared";
     if (fs::is_directory(beside_repo, ec)) return beside_repo;
   }
