@@ -12,7 +12,7 @@
 namespace a3::eval {
 
 JsonSchemaValidator::JsonSchemaValidator(std::string_view schema_json,
-                                         std::string_view schema_name)
+                                         std::string_view schema_name, SchemaEngine engine)
     : schema_(std::make_unique<valijson::Schema>()) {
   rapidjson::Document doc;
   doc.Parse(schema_json.data(), schema_json.size());
@@ -29,11 +29,22 @@ JsonSchemaValidator::JsonSchemaValidator(std::string_view schema_json,
     throw std::invalid_argument(std::string(schema_name) + ": not a usable JSON Schema: " +
                                 e.what());
   }
+  if (engine == SchemaEngine::kValijson) return;
+  try {
+    compiled_ = std::make_unique<CompiledSchema>(schema_json, schema_name);
+  } catch (const std::invalid_argument& e) {
+    if (engine == SchemaEngine::kCompiled) throw;
+    refusal_ = e.what();
+  }
 }
 
 JsonSchemaValidator::~JsonSchemaValidator() = default;
 
 bool JsonSchemaValidator::is_valid(const rapidjson::Value& document) const {
+  return compiled_ ? compiled_->is_valid(document) : valijson_is_valid(document);
+}
+
+bool JsonSchemaValidator::valijson_is_valid(const rapidjson::Value& document) const {
   valijson::Validator validator;
   valijson::adapters::RapidJsonAdapter adapter(document);
   return validator.validate(*schema_, adapter, nullptr);

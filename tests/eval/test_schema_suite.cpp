@@ -1,9 +1,12 @@
 // JsonSchemaValidator (valijson, draft 7) against the official JSON-Schema-Test-Suite cases for
 // exactly the keywords eval/schema/episode.schema.json uses, and against Python's
 // jsonschema.Draft202012Validator on the shared corpus (the schema claims both agree on it).
+// The compiled schema (eval/compiled_schema.hpp) must give valijson's verdict on every suite
+// case whose schema it compiles.
 #include <gtest/gtest.h>
 
 #include "eval/json_schema_validator.hpp"
+#include "eval/compiled_schema.hpp"
 
 #include <algorithm>
 #include <array>
@@ -29,7 +32,9 @@
 namespace {
 
 namespace fs = std::filesystem;
+using a3::eval::CompiledSchema;
 using a3::eval::JsonSchemaValidator;
+using a3::eval::SchemaEngine;
 using nlohmann::json;
 
 fs::path episode_schema_path() { return fs::path(A3_SOURCE_DIR) / "eval/schema/episode.schema.json"; }
@@ -253,6 +258,8 @@ TEST(JsonSchemaTestSuite, CasesForTheKeywordsOfOurSchema) {
   ASSERT_GE(files.size(), 10u);
 
   int run = 0, passed = 0, excluded = 0, unexplained = 0;
+  int compiled_groups = 0, refused_groups = 0, compiled_cases = 0;
+  std::string refusals;
   std::set<const Exclusion*> exclusions_used;
   for (const std::string& file : files) {
     const fs::path path = *dir / file;
@@ -264,9 +271,21 @@ TEST(JsonSchemaTestSuite, CasesForTheKeywordsOfOurSchema) {
       std::optional<JsonSchemaValidator> validator;
       std::string construction_error;
       try {
-        validator.emplace(group.at("schema").dump(), file + ": " + group_name);
+        validator.emplace(group.at("schema").dump(), file + ": " + group_name, SchemaEngine::kValijson);
       } catch (const std::invalid_argument& e) {
         construction_error = e.what();
+      }
+      // The compiled schema may refuse a schema (a keyword or form it does not support); when it
+      // compiles one, valijson must have accepted it too.
+      std::optional<CompiledSchema> compiled;
+      try {
+        compiled.emplace(group.at("schema").dump(), file + ": " + group_name);
+        ++compiled_groups;
+        EXPECT_TRUE(validator.has_value()) << file << " / " << group_name << ": compiled, but valijson refused: "
+                                           << construction_error;
+      } catch (const std::invalid_argument& e) {
+        ++refused_groups;
+        refusals += std::string("  refused: ") + e.what() + "\n";
       }
       for (const json& test_case : group.at("tests")) {
         ++run;
@@ -284,6 +303,10 @@ TEST(JsonSchemaTestSuite, CasesForTheKeywordsOfOurSchema) {
         } else {
           const bool valid = validator->is_valid(data);
           correct = valid == expected;
+          if (compiled) {
+            ++compiled_cases;
+            EXPECT_EQ(compiled->is_valid(data), valid) << where << ": the compiled schema disagrees with valijson";
+          }
           outcome = std::string("verdict ") + (valid ? "valid" : "invalid") + ", expected " +
                     (expected ? "valid" : "invalid");
           // violations() explains every failure and reports nothing for a valid document, except
@@ -323,8 +346,12 @@ TEST(JsonSchemaTestSuite, CasesForTheKeywordsOfOurSchema) {
   std::cout << "JSON-Schema-Test-Suite draft7, " << files.size() << " files: " << run
             << " cases run, " << passed << " passed, " << excluded << " excluded ("
             << unexplained << " invalid verdicts with no violation, all from `false` schemas)\n";
+  std::cout << "compiled schema: " << compiled_groups << " groups compiled (" << compiled_cases
+            << " cases, each with valijson's verdict), " << refused_groups << " groups refused\n" << refusals;
+  RecordProperty("suite_cases_compiled", compiled_cases);
   EXPECT_EQ(passed + excluded, run);
   EXPECT_GT(run, 150);
+  EXPECT_GT(compiled_cases, 150);
 }
 
 // ---- Agreement with Python's jsonschema.Draft202012Validator -----------------------------------
@@ -416,7 +443,8 @@ std::string valijson_verdict(const JsonSchemaValidator& validator, const fs::pat
 }
 
 std::map<std::string, std::string> valijson_verdicts(const std::vector<fs::path>& folders) {
-  const JsonSchemaValidator validator(read_file(episode_schema_path()), "episode.schema.json");
+  const JsonSchemaValidator validator(read_file(episode_schema_path()), "episode.schema.json",
+                                      SchemaEngine::kValijson);
   std::map<std::string, std::string> verdicts;
   for (const fs::path& folder : folders) {
     for (const auto& entry : fs::recursive_directory_iterator(folder)) {

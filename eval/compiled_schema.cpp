@@ -1,0 +1,136 @@
+// Validation with a compiled schema: one short check per keyword, in valijson's meaning (see
+// valijson/validation_visitor.hpp). Every check is a conjunct, so their order only decides how
+// soon a failure is found: the type first, then the cheap checks, then the subschemas.
+#include "eval/compiled_schema.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "eval/valijson_values.hpp"
+
+namespace a3::eval {
+namespace {
+
+bool type_matches(uint8_t mask, const rapidjson::Value& value) {
+  switch (value.GetType()) {
+    case rapidjson::kNullType: return (mask & kTypeNull) != 0;
+    case rapidjson::kFalseType:
+    case rapidjson::kTrueType: return (mask & kTypeBoolean) != 0;
+    case rapidjson::kObjectType: return (mask & kTypeObject) != 0;
+    case rapidjson::kArrayType: return (mask & kTypeArray) != 0;
+    case rapidjson::kStringType: return (mask & kTypeString) != 0;
+    case rapidjson::kNumberType:
+      return (mask & kTypeNumber) != 0 || ((mask & kTypeInteger) != 0 && !value.IsDouble());
+  }
+  return false;
+}
+
+// valijson looks a name up with the object's first member of that name.
+const rapidjson::Value* find_member(const rapidjson::Value& object, const std::string& name) {
+  for (auto it = object.MemberBegin(); it != object.MemberEnd(); ++it) {
+    if (it->name.GetStringLength() == name.size() &&
+        std::memcmp(it->name.GetString(), name.data(), name.size()) == 0) {
+      return &it->value;
+    }
+  }
+  return nullptr;
+}
+
+bool is_property_name(const std::vector<NamedSchema>& properties, const rapidjson::Value& name) {
+  for (const NamedSchema& property : properties) {
+    if (property.name.size() == name.GetStringLength() &&
+        std::memcmp(property.name.data(), name.GetString(), property.name.size()) == 0) {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool bounds_valid(const SchemaNode& node, const rapidjson::Value& value) {
+  if (!value.IsNumber() || (!node.minimum && !node.maximum)) return true;
+  const double number = valijson_number(value);
+  if (node.minimum && number < *node.minimum) return false;
+  return !(node.maximum && number > *node.maximum);
+}
+
+// valijson's MultipleOfDoubleConstraint: a remainder within one epsilon of zero passes, and so
+// do strings that read as numbers (it does not check types here).
+bool multiple_of_valid(const SchemaNode& node, const rapidjson::Value& value) {
+  if (!node.multiple_of) return true;
+  double number = 0.0;
+  if (!valijson_maybe_double(value, number) || number == 0) return true;
+  const double remainder = std::remainder(number, *node.multiple_of);
+  return !(std::fabs(remainder) > std::numeric_limits<double>::epsilon());
+}
+
+bool enum_valid(const SchemaNode& node, const rapidjson::Value& value) {
+  if (node.enum_values == nullptr) return true;
+  for (const rapidjson::Value& allowed : node.enum_values->GetArray()) {
+    if (valijson_equal(allowed, value)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool CompiledSchema::valid_at(SchemaNodeIndex index, const rapidjson::Value& value) const {
+  const SchemaNode& node = nodes_[static_cast<std::size_t>(index)];
+  if (node.kind != SchemaNode::Kind::kKeywords) return node.kind == SchemaNode::Kind::kAlwaysValid;
+  if (node.type_mask && !type_matches(*node.type_mask, value)) return false;
+  if (!bounds_valid(node, value) || !multiple_of_valid(node, value)) return false;
+  if (node.const_value != nullptr && !valijson_equal(*node.const_value, value)) return false;
+  if (!enum_valid(node, value)) return false;
+  if (value.IsObject() && !object_valid(node, value)) return false;
+  if (value.IsArray() && !array_valid(node, value)) return false;
+  return conditional_valid(node, value);
+}
+
+bool CompiledSchema::object_valid(const SchemaNode& node, const rapidjson::Value& object) const {
+  for (const std::string& name : node.required) {
+    if (find_member(object, name) == nullptr) return false;
+  }
+  rapidjson::SizeType matched = 0;
+  for (const NamedSchema& property : node.properties) {
+    const rapidjson::Value* member = find_member(object, property.name);
+    if (member == nullptr) continue;
+    ++matched;
+    if (!valid_at(property.schema, *member)) return false;
+  }
+  switch (node.additional) {
+    case AdditionalProperties::kAny: return true;
+    // valijson counts the distinct names matched: a repeated name is one too many.
+    case AdditionalProperties::kNone: return matched == object.MemberCount();
+    case AdditionalProperties::kSchema: return additional_valid(node, object);
+  }
+  return false;
+}
+
+bool CompiledSchema::additional_valid(const SchemaNode& node, const rapidjson::Value& object) const {
+  for (auto it = object.MemberBegin(); it != object.MemberEnd(); ++it) {
+    if (is_property_name(node.properties, it->name)) continue;
+    if (!valid_at(node.additional_schema, it->value)) return false;
+  }
+  return true;
+}
+
+bool CompiledSchema::array_valid(const SchemaNode& node, const rapidjson::Value& array) const {
+  const uint64_t size = array.Size();
+  if (node.min_items && size < *node.min_items) return false;
+  if (node.max_items && size > *node.max_items) return false;
+  if (node.items == kNoSchemaNode) return true;
+  for (const rapidjson::Value& element : array.GetArray()) {
+    if (!valid_at(node.items, element)) return false;
+  }
+  return true;
+}
+
+bool CompiledSchema::conditional_valid(const SchemaNode& node, const rapidjson::Value& value) const {
+  if (node.if_schema == kNoSchemaNode) return true;
+  if (valid_at(node.if_schema, value)) {
+    return node.then_schema == kNoSchemaNode || valid_at(node.then_schema, value);
+  }
+  return node.else_schema == kNoSchemaNode || valid_at(node.else_schema, value);
+}
+
+}  // namespace a3::eval
