@@ -29,8 +29,9 @@ if(A3_LCM_TYPES_JAR)
   install(FILES ${A3_LCM_TYPES_JAR} DESTINATION ${CMAKE_INSTALL_DATADIR}/java)
 endif()
 
-# The package: Depends from dpkg-shlibdeps on the program (the Debian runtime libraries);
-# Recommends what the scripts and the trajectory plot run.
+# The package: Depends from dpkg-shlibdeps on the program (the Debian runtime libraries), plus
+# libjs-d3, which `a3rig run` inlines into report.html; Recommends what the scripts and the
+# trajectory plot run.
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME a3rig)
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
@@ -41,5 +42,6 @@ set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_MAINTAINER "a3rig developers <a3rig@localhost>")
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "libjs-d3")
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "gnuplot-nox, python3, default-jre, liblcm-java, libjchart2d-java")
 include(CPack)

@@ -3,7 +3,8 @@
 # temporary prefix lays out the program, its data and the LCM types; `cpack -G DEB` makes the
 # a3rig package with Debian runtime Depends; the package's a3rig, unpacked with dpkg-deb -x, flies
 # a scenario in virtual time from a folder outside the source tree, under strace, touching no
-# file of the source or build tree, and writes an episode that `a3rig validate` accepts.
+# file of the source or build tree, and writes an episode that `a3rig validate` accepts and an
+# LCM log that the packaged a3rig-read-lcm-log decodes with the packaged Python types.
 # Exit 77 (skipped) without strace or dpkg-deb.
 # Usage: test_install_package.sh SOURCE_DIR BUILD_DIR SCENARIO
 set -euo pipefail
@@ -33,10 +34,10 @@ deb=$(find "$tmp/pkg" -maxdepth 1 -name 'a3rig_*.deb' | head -n 1)
 [ -n "$deb" ] || { cat "$tmp/cpack.log"; fail "cpack made no a3rig_*.deb"; }
 depends=$(dpkg-deb -f "$deb" Depends)
 echo "Depends: $depends"
-for lib in liblcm1 libc6 libstdc++6; do
+for lib in liblcm1 libc6 libstdc++6 libjs-d3; do
   [[ "$depends" == *"$lib"* ]] || fail "the package does not depend on $lib"
 done
-ok "$(basename "$deb") depends on the Debian runtime libraries"
+ok "$(basename "$deb") depends on the Debian runtime libraries and libjs-d3"
 
 root=$tmp/root
 dpkg-deb -x "$deb" "$root"
@@ -62,3 +63,11 @@ env -u A3_SHARED_DIR "$a3rig" run --runtime virtual --scenario alphabench:absent
 grep -q "$root/usr/share/a3rig/shared/alphabench/eval_runs/absent/episode.json" "$tmp/corpus.log" ||
   { cat "$tmp/corpus.log"; fail "the packaged a3rig did not look for the corpus under $root/usr/share/a3rig/shared (exit $status)"; }
 ok "the packaged a3rig looks for the corpus under its share/a3rig/shared"
+
+# The packaged LCM log reader finds the packaged Python types.
+"$root/usr/bin/a3rig-read-lcm-log" "$tmp/run" >"$tmp/read.log" || { cat "$tmp/read.log"; fail "a3rig-read-lcm-log"; }
+if ! grep -q "^messages of no a3lcm type: 0$" "$tmp/read.log" || ! grep -q "^vehicle states: [1-9]" "$tmp/read.log"; then
+  cat "$tmp/read.log"
+  fail "a3rig-read-lcm-log did not decode the run's log"
+fi
+ok "the packaged a3rig-read-lcm-log decoded the run's LCM log with the packaged Python types"
