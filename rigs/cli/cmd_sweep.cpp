@@ -124,6 +124,7 @@ void print_report(const sweep::SweepReport& report) {
               report.aggregate_path.c_str(), report.aggregates.size());
   for (const auto& png : report.plots.pngs) std::printf("plot:      %s\n", png.c_str());
   if (!report.plots.problem.empty()) std::printf("plots:     not all drawn: %s\n", report.plots.problem.c_str());
+  std::printf("index:     %s (plots, aggregate and every cell linked to its report)\n", report.index_path.c_str());
 }
 
 // --expect-shards N: the shards without a results file, named with the way to run them again.

@@ -49,6 +49,8 @@ void add_scenario_run_flags(CLI::App& cmd, ScenarioRunFlags& f) {
   cmd.add_option("--min-turns", o.min_turns, "fewest turns before the dialogue may end (default 8)")->check(a3::rigs::between(2, 100));
   cmd.add_flag("--no-lcm-log", [&o](int64_t) { o.write_lcm_log = false; }, "do not write the LCM log");
   cmd.add_flag("--no-plot", [&o](int64_t) { o.write_plot = false; }, "do not draw the trajectory");
+  cmd.add_flag("--no-report", [&o](int64_t) { o.write_report = false; },
+               "do not write report.html (the episode's map, timelines, score and dialogue in one page)");
   cmd.add_flag("-q,--quiet", o.quiet, "no progress lines");
 }
 

@@ -133,6 +133,7 @@ RunResult finish(const Scenario& s, const RunOptions& o, RigNodes& n, const RunE
   result.episode = std::move(written.episode);
   result.episode_path = written.episode_path;
   result.plot_problem = written.plot_problem;
+  result.report_problem = written.report_problem;
   result.outputs_lost = written.lost;
   if (progress) {
     char text[200];

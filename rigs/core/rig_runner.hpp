@@ -25,6 +25,7 @@ struct RunResult {
   nlohmann::json episode;
   std::filesystem::path episode_path;  // empty when episode.json could not be written
   std::string plot_problem;  // "" when the plot was written
+  std::string report_problem;  // "" when report.html was written
   std::vector<std::string> outputs_lost;  // "<file>: <reason>" of every output that could not be written
   double mission_time_s = 0.0;
   double wall_time_s = 0.0;

@@ -51,6 +51,7 @@ struct RunOptions {
   int max_turns = 12;
   bool write_lcm_log = true;
   bool write_plot = true;
+  bool write_report = true;  // report.html beside episode.json (episode_report.hpp)
   bool quiet = false;
   std::filesystem::path shared_dir = "../shared";
 };

@@ -7,6 +7,8 @@
 #include <string>
 
 #include "common/atomic_file.hpp"
+#include "common/json_file.hpp"
+#include "rigs/core/episode_report.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -23,6 +25,8 @@ constexpr double kEpisodeFixedBytes = 64.0 * 1024.0;
 // trajectory.png (~65 KB, whatever the mission) + .tsv (~40 B/s) + .gp.
 constexpr double kPlotFixedBytes = 128.0 * 1024.0;
 constexpr double kPlotBytesPerSimulatedSecond = 64.0;
+// report.html: the episode's JSON again, d3 (~150 KB) and the page's own script and style.
+constexpr double kReportFixedBytes = 256.0 * 1024.0;
 
 std::string mib(std::uint64_t bytes) {
   char text[32];
@@ -44,13 +48,28 @@ void note_lost_outputs(nlohmann::json& episode, const std::string& status, const
   if (!lost.empty()) episode["_rig"]["outputs_lost"] = lost;
 }
 
-// When this fails too, the episode written before stays (whole, without the plot's failure).
-void rewrite_episode_naming_the_plot(const RunOptions& o, WrittenOutputs& out, const std::string& flight_status) {
+// When this fails too, the episode written before stays (whole, without the plot's or the
+// report's failure).
+void rewrite_episode_naming_lost_outputs(const RunOptions& o, WrittenOutputs& out, const std::string& flight_status) {
   out.status = status_with_lost_outputs(flight_status, out.lost, true);
   note_lost_outputs(out.episode, out.status, flight_status, out.lost);
   try {
     write_episode(o.out_dir, out.episode);
   } catch (const common::OutputError&) {
+  }
+}
+
+// report.html beside the episode: a write that fails is a lost output; a report that cannot be
+// made (d3 not installed) is a problem the run prints, as a plot without gnuplot is.
+void write_report(const Scenario& s, const RunOptions& o, WrittenOutputs& out, const std::string& flight_status) {
+  try {
+    write_episode_report(o.out_dir / "report.html", out.episode, s, (o.out_dir / "episode.json").string());
+  } catch (const common::OutputError& e) {
+    out.lost.push_back(e.what());
+    out.report_problem = e.what();
+    if (!out.episode_path.empty()) rewrite_episode_naming_lost_outputs(o, out, flight_status);
+  } catch (const common::InputError& e) {
+    out.report_problem = e.what();
   }
 }
 
@@ -62,6 +81,7 @@ OutputSpaceEstimate estimate_output_bytes(const Scenario& s, const RunOptions& o
   e.episode_bytes = static_cast<std::uint64_t>(std::ceil(kEpisodeFixedBytes + kEpisodeBytesPerSimulatedSecond * seconds));
   if (o.write_lcm_log) e.lcm_log_bytes = static_cast<std::uint64_t>(std::ceil(kLcmLogBytesPerSimulatedSecond * seconds));
   if (o.write_plot) e.plot_bytes = static_cast<std::uint64_t>(std::ceil(kPlotFixedBytes + kPlotBytesPerSimulatedSecond * seconds));
+  if (o.write_report) e.report_bytes = static_cast<std::uint64_t>(std::ceil(kReportFixedBytes + e.episode_bytes));
   return e;
 }
 
@@ -73,7 +93,7 @@ void check_output_space(const Scenario& s, const RunOptions& o) {
   throw OutputSpaceError(o.out_dir.string() + ": too little free space for the run: " + std::to_string(need.total()) +
                          " bytes needed (" + mib(need.total()) + ": episode " + std::to_string(need.episode_bytes) +
                          ", LCM log " + std::to_string(need.lcm_log_bytes) + ", plot " + std::to_string(need.plot_bytes) +
-                         "), " + std::to_string(free) + " free; nothing flown (" + kSkipSpaceCheckEnv +
+                         ", report " + std::to_string(need.report_bytes) + "), " + std::to_string(free) + " free; nothing flown (" + kSkipSpaceCheckEnv +
                          "=1 flies anyway)");
 }
 
@@ -111,9 +131,10 @@ WrittenOutputs write_run_outputs(const Scenario& s, const RunOptions& o, const R
     } catch (const common::OutputError& e) {
       out.lost.push_back(e.what());
       out.plot_problem = e.what();
-      if (!out.episode_path.empty()) rewrite_episode_naming_the_plot(o, out, flight_status);
+      if (!out.episode_path.empty()) rewrite_episode_naming_lost_outputs(o, out, flight_status);
     }
   }
+  if (o.write_report) write_report(s, o, out, flight_status);
   out.status = status_with_lost_outputs(flight_status, out.lost, !out.episode_path.empty());
   out.episode["_rig"]["status"] = out.status;
   return out;

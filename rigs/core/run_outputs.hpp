@@ -24,7 +24,8 @@ struct OutputSpaceEstimate {
   std::uint64_t episode_bytes = 0;
   std::uint64_t lcm_log_bytes = 0;  // 0 with --no-lcm-log
   std::uint64_t plot_bytes = 0;     // 0 with --no-plot
-  std::uint64_t total() const { return episode_bytes + lcm_log_bytes + plot_bytes; }
+  std::uint64_t report_bytes = 0;   // 0 with --no-report
+  std::uint64_t total() const { return episode_bytes + lcm_log_bytes + plot_bytes + report_bytes; }
 };
 
 // The bytes a run of `scenario` writes at most, from its mission time limit.
@@ -52,11 +53,12 @@ struct WrittenOutputs {
   nlohmann::json episode;              // as written (or as it would have been)
   std::filesystem::path episode_path;  // empty: not written
   std::string plot_problem;            // "" when drawn (or not asked for)
+  std::string report_problem;          // "" when report.html was written (or not asked for)
   std::vector<std::string> lost;       // "<file>: <reason>", in the order they failed
 };
 
 // Writes episode.json (with the lost outputs in _rig.outputs_lost and, when the status was
-// changed, the flight's own in _rig.flight_status), then the plot. `lcm_log_failure` is the
+// changed, the flight's own in _rig.flight_status), then the plot and report.html. `lcm_log_failure` is the
 // log's failure ("" when it was written). Never throws for a write that fails: it is lost.
 WrittenOutputs write_run_outputs(const Scenario& scenario, const RunOptions& options, const RecordedEpisode& rec,
                                  RunFacts facts, const std::string& lcm_log_failure);

@@ -4,10 +4,7 @@
 #include <algorithm>
 #include <string>
 
-#include "common/json_text.hpp"
-#include "eval/episode_reader.hpp"
-#include "eval/episode_schema.hpp"
-#include "eval/pillars.hpp"
+#include "rigs/core/episode_score.hpp"
 #include "rigs/core/realtime_report.hpp"
 
 namespace a3::rigs {
@@ -21,18 +18,15 @@ std::string pace(const RunResult& r, const RunOptions& o) {
 }
 
 void print_score(std::FILE* out, const nlohmann::json& episode) {
-  const eval::JsonSchemaValidator validator(eval::episode_schema_json(), eval::kEpisodeSchemaName);
-  const eval::ScoringProfile profile = eval::release_profile();
-  eval::EpisodeReader reader(validator, profile);
-  const eval::EpisodeCheck check = reader.check_text(common::dump_json_text(episode));
-  if (check.status == eval::EpisodeStatus::kValid) {
-    const eval::Pillars p = eval::score_pillars(check.facts, profile, profile.optimal_turns);
+  const EpisodeScore score = score_episode(episode);
+  if (score.valid) {
+    const eval::Pillars& p = score.pillars;
     std::fprintf(out, "α³ = %.4f  (TO %.3f  SP %.3f  TC %.3f  IQ %.3f  NR %.3f  CC %.3f)\n", p.alpha3, p.to, p.sp,
                  p.tc, p.iq, p.nr, p.cc);
     return;
   }
   std::fprintf(out, "the episode is not a valid α³-Bench episode (α³ = 0):\n");
-  for (const auto& v : check.violations) std::fprintf(out, "  %s\n", eval::to_string(v).c_str());
+  for (const auto& v : score.violations) std::fprintf(out, "  %s\n", v.c_str());
 }
 
 // The file's path, or "not written (<file>: <reason>)" when it is among the lost outputs.
@@ -65,6 +59,14 @@ void print_run_summary(std::FILE* out, const RunResult& r, const RunOptions& o) 
   }
   std::fprintf(out, "success: %s\n", r.episode.value("success", false) ? "true" : "false");
   print_score(out, r.episode);
+  if (o.write_report) {  // last, so that the page to open is the last line
+    if (r.report_problem.empty()) {
+      std::fprintf(out, "report:  %s (open it in a browser: map, timelines, score, dialogue)\n",
+                   (o.out_dir / "report.html").c_str());
+    } else {
+      std::fprintf(out, "report:  not written (%s)\n", r.report_problem.c_str());
+    }
+  }
   std::fflush(out);
 }
 

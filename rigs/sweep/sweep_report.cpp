@@ -3,6 +3,8 @@
 
 #include <stdexcept>
 
+#include "rigs/sweep/sweep_index.hpp"
+
 namespace a3::rigs::sweep {
 
 SweepReport write_report(const std::filesystem::path& out_dir, const std::vector<ResultRow>& rows) {
@@ -11,6 +13,7 @@ SweepReport write_report(const std::filesystem::path& out_dir, const std::vector
   report.aggregate_path = out_dir / "aggregate.csv";
   write_aggregate_csv(report.aggregate_path, report.aggregates);
   report.plots = write_sweep_plots(out_dir / "plots", report.aggregates);
+  report.index_path = write_sweep_index(out_dir, rows, report.aggregates, report.plots.pngs);
   return report;
 }
 

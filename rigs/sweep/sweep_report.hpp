@@ -17,6 +17,7 @@ struct SweepReport {
   std::filesystem::path aggregate_path;  // out_dir/aggregate.csv
   std::vector<AggregateRow> aggregates;
   PlotOutcome plots;  // in out_dir/plots/
+  std::filesystem::path index_path;  // out_dir/index.html (sweep_index.hpp)
 };
 
 SweepReport write_report(const std::filesystem::path& out_dir, const std::vector<ResultRow>& rows);

@@ -106,7 +106,7 @@ TEST(OutputsFullDisk, ALogThatFillsTheDiskIsNamedAndTheEpisodeIsStillWritten) {
   test::TinyTmpfs disk(pages(ref.episode) + pages(ref.tsv) + pages(ref.gp) + 2 * pages(ref.png) + 8 * kPage);
   if (!disk.skip_reason().empty()) GTEST_SKIP() << disk.skip_reason();
   const fs::path out = disk.path() / "run";
-  const auto r = fly(out, "", "A3_SKIP_SPACE_CHECK=1");
+  const auto r = fly(out, "--no-report", "A3_SKIP_SPACE_CHECK=1");
   const std::string lost = (out / "episode.lcmlog").string() + ": No space left on device";
   EXPECT_EQ(r.exit_status, 8) << r.output;
   EXPECT_NE(r.output.find("status:  output_failed: " + lost + " (the flight ended completed)"), std::string::npos)
@@ -143,7 +143,7 @@ TEST(OutputsFullDisk, APlotCutShortIsReportedNotWrittenAndRemoved) {
   test::TinyTmpfs disk(pages(ref.episode) + pages(ref.tsv) + pages(ref.gp) + pages(ref.png / 3));
   if (!disk.skip_reason().empty()) GTEST_SKIP() << disk.skip_reason();
   const fs::path out = disk.path() / "run";
-  const auto r = fly(out, "--no-lcm-log", "A3_SKIP_SPACE_CHECK=1");
+  const auto r = fly(out, "--no-lcm-log --no-report", "A3_SKIP_SPACE_CHECK=1");
   const std::string png = (out / "trajectory.png").string();
   EXPECT_EQ(r.exit_status, 8) << r.output;
   EXPECT_NE(r.output.find("plot:    not written (" + png + ": "), std::string::npos) << r.output;
@@ -151,6 +151,25 @@ TEST(OutputsFullDisk, APlotCutShortIsReportedNotWrittenAndRemoved) {
   EXPECT_FALSE(fs::exists(out / "trajectory.png")) << listing(out);
   expect_no_partial_files(out);
   expect_valid_episode(out / "episode.json");
+}
+
+TEST(OutputsFullDisk, AReportThatDoesNotFitIsNamedAndTheEpisodeStays) {
+  const ReferenceSizes& ref = reference_sizes();
+  // The episode fits, twice (it is written again naming the lost report); report.html does not.
+  test::TinyTmpfs disk(2 * pages(ref.episode) + 4 * kPage);
+  if (!disk.skip_reason().empty()) GTEST_SKIP() << disk.skip_reason();
+  const fs::path out = disk.path() / "run";
+  const auto r = fly(out, "--no-lcm-log --no-plot", "A3_SKIP_SPACE_CHECK=1");
+  const std::string lost = (out / "report.html").string() + ": No space left on device";
+  EXPECT_EQ(r.exit_status, 8) << r.output;
+  EXPECT_NE(r.output.find("report:  not written (" + lost + ")"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("status:  output_failed: " + lost + " (the flight ended completed)"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(out / "report.html")) << listing(out);
+  expect_no_partial_files(out);
+  expect_valid_episode(out / "episode.json");
+  const auto episode = nlohmann::json::parse(slurp(out / "episode.json"));
+  EXPECT_EQ(episode["_rig"]["outputs_lost"], nlohmann::json::array({lost}));
 }
 
 TEST(OutputsFullDisk, LeaderboardFiguresThatDoNotFitAreNamedAndNotLeftHalfWritten) {

@@ -20,6 +20,7 @@ inline rigs::RunOptions virtual_run(const std::string& scenario, const std::stri
   o.out_dir = std::filesystem::temp_directory_path() / ("a3rig-test-rig-" + out_tag + "-" + std::to_string(::getpid()));
   o.write_lcm_log = false;
   o.write_plot = false;
+  o.write_report = false;
   o.quiet = true;
   o.shared_dir = shared_dir();
   return o;

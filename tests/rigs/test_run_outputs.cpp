@@ -41,16 +41,19 @@ TEST(RunOutputs, TheEstimateGrowsWithTheTimeLimitAndDropsWhatIsNotWritten) {
   RunOptions o = test::virtual_run("parcel-delivery", "estimate");
   o.write_lcm_log = true;
   o.write_plot = true;
+  o.write_report = true;
   Scenario s = load_scenario(o.scenario, o.shared_dir);
   const OutputSpaceEstimate all = estimate_output_bytes(s, o);
   EXPECT_GT(all.lcm_log_bytes, all.episode_bytes);
   EXPECT_GT(all.plot_bytes, 0u);
+  EXPECT_GT(all.report_bytes, all.episode_bytes);
   s.mission.time_limit_s *= 2.0;
   EXPECT_GT(estimate_output_bytes(s, o).lcm_log_bytes, all.lcm_log_bytes);
   o.write_lcm_log = false;
   o.write_plot = false;
+  o.write_report = false;
   const OutputSpaceEstimate episode_only = estimate_output_bytes(s, o);
-  EXPECT_EQ(episode_only.lcm_log_bytes + episode_only.plot_bytes, 0u);
+  EXPECT_EQ(episode_only.lcm_log_bytes + episode_only.plot_bytes + episode_only.report_bytes, 0u);
   EXPECT_EQ(episode_only.total(), episode_only.episode_bytes);
 }
 
@@ -62,6 +65,7 @@ TEST_P(RunOutputsMeasured, AFlightsFilesFitInTheEstimate) {
   RunOptions o = test::virtual_run(GetParam(), "measured");
   o.write_lcm_log = true;
   o.write_plot = true;
+  o.write_report = true;
   const Scenario s = load_scenario(o.scenario, o.shared_dir);
   const RunResult r = test::run(o);
   ASSERT_EQ(r.status, "completed");
@@ -77,6 +81,7 @@ TEST_P(RunOutputsMeasured, AFlightsFilesFitInTheEstimate) {
   EXPECT_LE(size("episode.json"), e.episode_bytes);
   EXPECT_LE(size("episode.lcmlog"), e.lcm_log_bytes);
   EXPECT_LE(plot, e.plot_bytes);
+  EXPECT_LE(size("report.html"), e.report_bytes);
   fs::remove_all(o.out_dir);
 }
 

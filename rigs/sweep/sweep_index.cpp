@@ -1,0 +1,118 @@
+// The sweep's index page (sweep_index.hpp).
+#include "rigs/sweep/sweep_index.hpp"
+
+#include <cstdio>
+#include <optional>
+#include <sstream>
+
+#include "common/atomic_file.hpp"
+
+namespace a3::rigs::sweep {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string escaped(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string number(double v, int digits) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", digits, v);
+  return text;
+}
+
+std::string with_interval(double mean, const std::optional<Interval>& ci, int digits) {
+  std::string out = number(mean, digits);
+  if (ci) out += " [" + number(ci->lo, digits) + ", " + number(ci->hi, digits) + "]";
+  return out;
+}
+
+// The cell's report when the run wrote one, else its episode; relative to the sweep's folder.
+std::string cell_link(const fs::path& out_dir, const ResultRow& row) {
+  if (row.episode.empty()) return "";
+  const fs::path report = fs::path(row.episode).parent_path() / "report.html";
+  std::error_code ec;
+  return fs::is_regular_file(out_dir / report, ec) ? report.generic_string() : fs::path(row.episode).generic_string();
+}
+
+void plots_section(std::ostream& html, const fs::path& out_dir, const std::vector<fs::path>& pngs) {
+  html << "<h2>Plots</h2>\n";
+  for (const fs::path& png : pngs) {
+    const std::string rel = fs::relative(png, out_dir).generic_string();
+    html << "<figure><img class=\"plot\" src=\"" << escaped(rel) << "\" alt=\"" << escaped(rel) << "\"><figcaption>"
+         << escaped(rel) << "</figcaption></figure>\n";
+  }
+}
+
+void aggregate_section(std::ostream& html, const std::vector<AggregateRow>& aggregates) {
+  html << "<h2>Aggregate (95 % intervals)</h2>\n<table id=\"aggregate\"><tr><th>scenario</th><th>agent</th>"
+          "<th>think time</th><th>slice</th><th>n</th><th>α³</th><th>SP</th><th>success</th></tr>\n";
+  for (const AggregateRow& a : aggregates) {
+    html << "<tr><td>" << escaped(a.scenario) << "</td><td>" << escaped(a.agent) << "</td><td>" << escaped(a.think_time)
+         << "</td><td>" << escaped(a.slice) << "</td><td>" << a.n << "</td><td>" << with_interval(a.alpha3_mean, a.alpha3_ci, 3)
+         << "</td><td>" << with_interval(a.sp_mean, a.sp_ci, 3) << "</td><td>"
+         << with_interval(a.success_rate, a.success_ci, 2) << "</td></tr>\n";
+  }
+  html << "</table>\n";
+}
+
+void cells_section(std::ostream& html, const fs::path& out_dir, const std::vector<ResultRow>& rows) {
+  html << "<h2>Cells</h2>\n<table id=\"cells\"><tr><th>scenario</th><th>agent</th><th>think time</th><th>slice</th>"
+          "<th>seed</th><th>status</th><th>success</th><th>α³</th><th>episode</th></tr>\n";
+  for (const ResultRow& r : rows) {
+    const std::string link = cell_link(out_dir, r);
+    html << "<tr class=\"cell\"><td>" << escaped(r.scenario) << "</td><td>" << escaped(r.agent) << "</td><td>"
+         << escaped(r.think_time) << "</td><td>" << escaped(r.slice) << "</td><td>" << r.seed << "</td><td>"
+         << escaped(r.status) << "</td><td>" << (r.success ? "yes" : "no") << "</td><td>"
+         << (r.has_episode ? number(r.alpha3, 4) : "–") << "</td><td>"
+         << (link.empty() ? "–" : "<a href=\"" + escaped(link) + "\">" + (link.size() > 11 && link.substr(link.size() - 11) == "report.html" ? "report" : "episode") + "</a>")
+         << "</td></tr>\n";
+  }
+  html << "</table>\n";
+}
+
+constexpr const char* kStyle =
+    "body{font:13px/1.4 'DejaVu Sans',Helvetica,Arial,sans-serif;margin:0 16px 32px;color:#222}"
+    "table{border-collapse:collapse}th,td{border-bottom:1px solid #e4e4e4;padding:3px 8px;text-align:left}"
+    "figure{display:inline-block;margin:6px}img.plot{max-width:720px}";
+
+// Counts the plots that loaded, for a headless browser's check.
+constexpr const char* kScript =
+    "window.addEventListener('load',function(){var n=0;document.querySelectorAll('img.plot').forEach(function(i){"
+    "if(i.complete&&i.naturalWidth>0)++n;});document.body.setAttribute('data-plots-loaded',n);"
+    "document.body.setAttribute('data-drawn','yes');});";
+
+}  // namespace
+
+std::string sweep_index_html(const fs::path& out_dir, const std::vector<ResultRow>& rows,
+                             const std::vector<AggregateRow>& aggregates, const std::vector<fs::path>& pngs) {
+  std::ostringstream html;
+  html << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>sweep " << escaped(out_dir.filename().string())
+       << "</title><style>" << kStyle << "</style><script>" << kScript << "</script></head><body>\n<h1>Sweep: "
+       << escaped(out_dir.string()) << "</h1>\n<p>" << rows.size() << " cells; results.csv and aggregate.csv beside this page.</p>\n";
+  plots_section(html, out_dir, pngs);
+  aggregate_section(html, aggregates);
+  cells_section(html, out_dir, rows);
+  html << "</body></html>\n";
+  return html.str();
+}
+
+fs::path write_sweep_index(const fs::path& out_dir, const std::vector<ResultRow>& rows,
+                           const std::vector<AggregateRow>& aggregates, const std::vector<fs::path>& pngs) {
+  const fs::path path = out_dir / "index.html";
+  common::write_file_atomically(path, sweep_index_html(out_dir, rows, aggregates, pngs));
+  return path;
+}
+
+}  // namespace a3::rigs::sweep
