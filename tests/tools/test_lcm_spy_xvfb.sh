@@ -3,7 +3,8 @@
 # headless under Xvfb, on a run's episode.lcmlog: lcm-spy reads the log through LCM's file://
 # provider and reports the a3lcm types it found on its class path; lcm-logplayer-gui opens the
 # log and replays it onto an in-process memq:// bus (no network). Each must still be running
-# after a few seconds (stopped by timeout, exit 124). Exit 77 (skipped) without xvfb-run or java.
+# after 20 and 15 s (generous, for a loaded machine: stopped by timeout, exit 124). Exit 77
+# (skipped) without xvfb-run or java.
 # Usage: test_lcm_spy_xvfb.sh LCM_SPY_SH TYPES_JAR N_TYPES RUN_DIR
 set -euo pipefail
 spy=$1 jar=$2 n_types=$3 run_dir=$4
@@ -32,10 +33,10 @@ run() {
   fi
 }
 
-run lcm-spy 8 --lcm-url "file://$log?speed=1"
+run lcm-spy 20 --lcm-url "file://$log?speed=1"
 grep -qx "Found $n_types LCM types" "$out/lcm-spy" || { echo "FAIL: lcm-spy did not find the $n_types a3lcm types"; exit 1; }
 echo "ok: lcm-spy found the $n_types a3lcm types and ran"
 
-run lcm-logplayer-gui 6 --logplayer --lcm-url memq:// "$log"
+run lcm-logplayer-gui 15 --logplayer --lcm-url memq:// "$log"
 grep -q "^Total seconds: [1-9]" "$out/lcm-logplayer-gui" || { echo "FAIL: lcm-logplayer-gui did not read the log"; exit 1; }
 echo "ok: lcm-logplayer-gui opened the log and ran"
