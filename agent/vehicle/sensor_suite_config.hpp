@@ -14,7 +14,7 @@
 namespace a3::agent {
 
 struct DeclaredPayload {
-  std::string id;        // empty when the scenario gives none (the sensor suite refuses it)
+  std::string id;        // non-empty (the scenario's parser names an id-less payload by its index)
   std::string type;      // e.g. "gimbaled_camera", "" when not given
   std::string category;  // e.g. "imaging_thermal", "" when not given
   double power_W = 0.0;

@@ -29,11 +29,11 @@ UavPayloads parse_uav_payloads(const nlohmann::json& payloads, const std::string
     const auto& item = payloads[i];
     if (!item.is_object()) throw InputError(w + ": a payload must be an object");
     agent::DeclaredPayload d;
-    d.id = string_or_empty(item, "id", w);
+    d.id = item.contains("id") ? common::require_string(item, "id", w) : "payload" + std::to_string(i);
     d.type = string_or_empty(item, "type", w);
     d.category = string_or_empty(item, "category", w);
     dynamics::Payload p;
-    p.id = item.contains("id") ? d.id : "payload" + std::to_string(i);
+    p.id = d.id;
     p.mass_kg = non_negative_or_zero(item, "mass_kg", w);
     p.drag_cdA_m2 = non_negative_or_zero(item, "drag_cdA", w);
     p.power_W = non_negative_or_zero(item, "power_W", w);

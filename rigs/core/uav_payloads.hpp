@@ -16,8 +16,10 @@
 namespace a3::rigs {
 
 struct UavPayloads {
-  std::vector<dynamics::Payload> physical;        // mass, drag area, power; id "payload<i>" when none
-  std::vector<agent::DeclaredPayload> declared;  // id (empty when none), type, category, power
+  // Both parts carry the same id: the payload's own, or "payload<i>" (its index) when it has none,
+  // as a third of the corpus' payloads do.
+  std::vector<dynamics::Payload> physical;       // mass, drag area, power
+  std::vector<agent::DeclaredPayload> declared;  // id, type, category, power
 };
 
 // `json_path` names the array ("file.json: /initial_state/uav/payloads"). mass_kg, drag_cdA

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "agent/vehicle/sensor_suite.hpp"
 #include "common/json_file.hpp"
 #include "rigs/core/initial_state.hpp"
 #include "rigs/core/uav_payloads.hpp"
@@ -42,12 +43,24 @@ TEST(UavPayloadsParser, ReadsThePhysicalAndTheDeclaredPartOfEachPayload) {
   EXPECT_EQ(p.declared[0].type, "gimbaled_camera");
   EXPECT_EQ(p.declared[0].category, "imaging_optical");
   EXPECT_DOUBLE_EQ(p.declared[0].power_W, 45.0);
-  EXPECT_EQ(p.physical[1].id, "payload1") << "the dynamics name a payload without an id by its index";
-  EXPECT_EQ(p.declared[1].id, "") << "the sensor suite is told there was none";
+  EXPECT_EQ(p.physical[1].id, "payload1") << "a payload without an id is named by its index";
+  EXPECT_EQ(p.declared[1].id, "payload1") << "the sensor suite knows it by the same name";
+  EXPECT_EQ(p.declared[1].type, "parcel_delivery_system");
   EXPECT_EQ(p.declared[1].category, "");
   EXPECT_DOUBLE_EQ(p.physical[1].drag_cdA_m2, 0.0);
   EXPECT_DOUBLE_EQ(p.physical[1].power_W, 0.0);
   EXPECT_TRUE(parse_uav_payloads(json(), kPath).physical.empty()) << "null: no payloads";
+}
+
+TEST(UavPayloadsParser, TheSensorSuiteTakesPayloadsWithoutAnIdAsTheCorpusWritesThem) {
+  const json doc = json::parse(R"([{"type": "parcel_delivery_system", "mass_kg": 1.2},
+                                   {"type": "thermal_camera", "category": "imaging_thermal", "mass_kg": 0.3}])");
+  agent::SensorSuiteConfig config;
+  config.payloads = parse_uav_payloads(doc, kPath).declared;
+  const agent::SensorSuite suite(config, agent::ImageSizes{});
+  ASSERT_NE(suite.find("payload1"), nullptr);
+  EXPECT_TRUE(suite.find("payload1")->imaging);
+  EXPECT_FALSE(suite.find("payload0")->imaging);
 }
 
 TEST(UavPayloadsParser, EachBadFieldIsRefusedNamingItsPath) {
