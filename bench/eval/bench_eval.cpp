@@ -1,8 +1,12 @@
 // Per-episode cost of each scoring stage on the public α³-Bench episodes: UTF-8 check, parse,
-// depth and duplicate-key check, schema validation (valijson), semantic rules, fact extraction, pillars, and the whole check.
+// depth and duplicate-key check, schema validation (valijson and the compiled schema), semantic
+// rules, fact extraction, pillars, and the whole check; then whole-corpus scoring (score_corpus)
+// on 1 and 2 threads with each schema engine, over $A3_BENCH_CORPUS (a folder of episodes, e.g.
+// the replicated corpus score_throughput.py builds) or else the public episodes.
 // Run: build/bench/bench_eval   (needs ../shared/alphabench or A3_SHARED_DIR)
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "eval/corpus_scorer.hpp"
 #include "eval/episode_document.hpp"
 #include "eval/episode_reader.hpp"
 #include "eval/episode_schema.hpp"
@@ -24,11 +29,15 @@ namespace {
 namespace fs = std::filesystem;
 using namespace a3::eval;
 
+fs::path public_episodes() {
+  const char* env = std::getenv("A3_SHARED_DIR");
+  return fs::path(env != nullptr && *env ? env : A3_SHARED_DIR_DEFAULT) / "alphabench";
+}
+
 std::vector<std::string>& episodes() {
   static std::vector<std::string> texts = [] {
     std::vector<std::string> out;
-    const char* env = std::getenv("A3_SHARED_DIR");
-    const fs::path root = fs::path(env != nullptr && *env ? env : A3_SHARED_DIR_DEFAULT) / "alphabench";
+    const fs::path root = public_episodes();
     if (!fs::exists(root)) return out;
     for (const auto& entry : fs::recursive_directory_iterator(root)) {
       if (entry.path().extension() != ".json" || entry.path().filename() == "README.md") continue;
@@ -43,10 +52,14 @@ std::vector<std::string>& episodes() {
   return texts;
 }
 
-const JsonSchemaValidator& validator() {
-  static const JsonSchemaValidator v(episode_schema_json(), kEpisodeSchemaName);
-  return v;
+// Argument 0: valijson, 1: the compiled schema (what scoring uses).
+const JsonSchemaValidator& validator(int64_t engine = 1) {
+  static const JsonSchemaValidator valijson(episode_schema_json(), kEpisodeSchemaName, SchemaEngine::kValijson);
+  static const JsonSchemaValidator compiled(episode_schema_json(), kEpisodeSchemaName, SchemaEngine::kCompiled);
+  return engine == 0 ? valijson : compiled;
 }
+
+const char* engine_label(int64_t engine) { return engine == 0 ? "valijson" : "compiled"; }
 
 bool need_corpus(benchmark::State& state) {
   if (!episodes().empty()) return true;
@@ -138,10 +151,12 @@ void BM_DepthAndDuplicateKeys(benchmark::State& state) {
 
 void BM_SchemaValidation(benchmark::State& state) {
   if (!need_corpus(state)) return;
+  const JsonSchemaValidator& v = validator(state.range(0));
   std::size_t i = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(validator().is_valid(parsed()[i++ % parsed().size()]));
+    benchmark::DoNotOptimize(v.is_valid(parsed()[i++ % parsed().size()]));
   }
+  state.SetLabel(engine_label(state.range(0)));
   report(state);
 }
 
@@ -179,12 +194,33 @@ void BM_Pillars(benchmark::State& state) {
 void BM_WholeCheckFromMemory(benchmark::State& state) {
   if (!need_corpus(state)) return;
   const ScoringProfile profile = release_profile();
-  EpisodeReader reader(validator(), profile);
+  EpisodeReader reader(validator(state.range(0)), profile);
   std::size_t i = 0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(reader.check_text(episodes()[i++ % episodes().size()]));
   }
+  state.SetLabel(engine_label(state.range(0)));
   report(state);
+}
+
+// What `a3rig score` does (walk, read, check, score, aggregate), minus printing: episodes/s is
+// items_per_second. Arguments: engine, threads.
+void BM_ScoreCorpus(benchmark::State& state) {
+  const char* env = std::getenv("A3_BENCH_CORPUS");
+  const fs::path root = env != nullptr && *env ? fs::path(env) : public_episodes();
+  if (!fs::exists(root)) {
+    state.SkipWithError("needs A3_BENCH_CORPUS or ../shared/alphabench");
+    return;
+  }
+  ScoreOptions options;
+  options.threads = static_cast<std::size_t>(state.range(1));
+  uint64_t files = 0;
+  for (auto _ : state) {
+    const ScoreResult result = score_corpus({root}, validator(state.range(0)), options);
+    files += result.files;
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(files));
+  state.SetLabel(std::string(engine_label(state.range(0))) + ", " + std::to_string(state.range(1)) + " thread(s)");
 }
 
 BENCHMARK(BM_Utf8Check);
@@ -192,11 +228,12 @@ BENCHMARK(BM_ParseInPlace);
 BENCHMARK(BM_ParseInPlaceIterative);
 BENCHMARK(BM_ParseInPlaceExactNumbers);
 BENCHMARK(BM_DepthAndDuplicateKeys);
-BENCHMARK(BM_SchemaValidation);
+BENCHMARK(BM_SchemaValidation)->Arg(0)->Arg(1);
 BENCHMARK(BM_SemanticRules);
 BENCHMARK(BM_ExtractFacts);
 BENCHMARK(BM_Pillars);
-BENCHMARK(BM_WholeCheckFromMemory);
+BENCHMARK(BM_WholeCheckFromMemory)->Arg(0)->Arg(1);
+BENCHMARK(BM_ScoreCorpus)->ArgsProduct({{0, 1}, {1, 2}})->UseRealTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
