@@ -11,13 +11,12 @@ VirtualBus::~VirtualBus() {
 
 bool VirtualBus::publish_raw(const std::string& channel, const uint8_t* data, std::size_t size) {
   ++published_;
-  std::size_t recipients = 0;
-  for (const auto& [id, sub] : subscribers_) recipients += sub.channel == channel ? 1 : 0;
-  if (recipients == 0) return true;
-  const uint32_t message = store_message(channel, data, size, recipients);
+  const auto it = by_channel_.find(channel);
+  if (it == by_channel_.end() || it->second.empty()) return true;
+  const std::vector<SubscriptionId>& recipients = it->second;
+  const uint32_t message = store_message(channel, data, size, recipients.size());
   const int64_t now_us = executor_.clock().now_us();
-  for (const auto& [id, sub] : subscribers_) {
-    if (sub.channel != channel) continue;
+  for (const SubscriptionId id : recipients) {
     // Events at one time run in the order scheduled, so each one delivers the oldest delivery.
     const TimerId event = executor_.schedule_at(now_us, [this] { deliver_next(); });
     push_delivery(Delivery{id, message, event});
@@ -86,9 +85,16 @@ VirtualBus::Delivery VirtualBus::pop_delivery() {
 SubscriptionId VirtualBus::subscribe_raw(const std::string& channel, RawHandler handler) {
   const SubscriptionId id = next_id_++;
   subscribers_.emplace(id, Subscriber{channel, std::make_shared<RawHandler>(std::move(handler))});
+  by_channel_[channel].push_back(id);
   return id;
 }
 
-void VirtualBus::unsubscribe(SubscriptionId id) { subscribers_.erase(id); }
+void VirtualBus::unsubscribe(SubscriptionId id) {
+  const auto it = subscribers_.find(id);
+  if (it == subscribers_.end()) return;
+  std::vector<SubscriptionId>& ids = by_channel_[it->second.channel];
+  ids.erase(std::remove(ids.begin(), ids.end(), id), ids.end());
+  subscribers_.erase(it);
+}
 
 }  // namespace a3::common

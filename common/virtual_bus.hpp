@@ -12,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "common/bus.hpp"
@@ -57,7 +58,9 @@ class VirtualBus final : public Bus {
   Delivery pop_delivery();
 
   Executor& executor_;
-  std::map<SubscriptionId, Subscriber> subscribers_;  // ordered: delivery order is stable
+  std::map<SubscriptionId, Subscriber> subscribers_;
+  // Each channel's subscribers in subscription order: the order a message is delivered in.
+  std::unordered_map<std::string, std::vector<SubscriptionId>> by_channel_;
   SubscriptionId next_id_ = 1;
   uint64_t published_ = 0;
   std::vector<std::unique_ptr<Message>> messages_;  // stable addresses while handlers run
