@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 #include <utility>
 
 #include "common/json_file.hpp"
@@ -67,6 +68,18 @@ void parse_airspace(const nlohmann::json& state, const std::string& where, Initi
   }
 }
 
+// The sensor tools know sensors and payloads by one name each: a payload's id (its own or
+// payload<i>) may be neither a sensor's name nor an earlier payload's id.
+void refuse_clashing_payload_ids(const agent::SensorSuiteConfig& sensors, const std::string& w) {
+  std::set<std::string> seen;
+  for (std::size_t i = 0; i < sensors.payloads.size(); ++i) {
+    const std::string& id = sensors.payloads[i].id;
+    const std::string wi = w + "/payloads/" + std::to_string(i) + "/id: '" + id + "' ";
+    if (sensors.sensor_health.count(id) != 0) throw InputError(wi + "is also the name of a sensor in uav/sensors");
+    if (!seen.insert(id).second) throw InputError(wi + "is also the id of an earlier payload");
+  }
+}
+
 void parse_uav(const nlohmann::json& state, const std::string& where, InitialState& out) {
   const auto& uav = common::require_object(state, "uav", where);
   const std::string w = where + "/uav";
@@ -86,6 +99,7 @@ void parse_uav(const nlohmann::json& state, const std::string& where, InitialSta
     out.payloads = std::move(payloads.physical);
     out.sensors.payloads = std::move(payloads.declared);
   }
+  refuse_clashing_payload_ids(out.sensors, w);
 }
 
 }  // namespace

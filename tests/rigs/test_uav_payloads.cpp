@@ -120,6 +120,12 @@ TEST(InitialStateSections, ErrorsInEachSectionNameTheirPathUnderInitialState) {
   s = initial_state();
   s["uav"]["payloads"] = {{"id", "x"}};
   EXPECT_EQ(error(s), "s.json: /initial_state/uav/payloads: expected an array, got object");
+  s = initial_state();
+  s["uav"]["payloads"][0]["id"] = "thermal";
+  EXPECT_EQ(error(s), "s.json: /initial_state/uav/payloads/0/id: 'thermal' is also the name of a sensor in uav/sensors");
+  s = initial_state();
+  s["uav"]["payloads"] = json::parse(R"([{"mass_kg": 1}, {"id": "payload0", "mass_kg": 1}])");
+  EXPECT_EQ(error(s), "s.json: /initial_state/uav/payloads/1/id: 'payload0' is also the id of an earlier payload");
 }
 
 }  // namespace
