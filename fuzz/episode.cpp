@@ -1,10 +1,16 @@
 // Fuzz target "episode": an episode file's text through the scorer's reader (UTF-8, JSON
 // syntax, schema, failure stub, semantic checks, facts), then the α³ pillars of a valid one
-// under both scoring profiles. Invariant: every pillar and α³ lie in [0, 1].
+// under both scoring profiles. Invariants: every pillar and α³ lie in [0, 1]; the compiled
+// schema (what scoring validates with) and valijson give the same verdict on every document.
+#include <cstring>
+#include <string>
 #include <string_view>
 
+#include "eval/compiled_schema.hpp"
 #include "eval/episode_reader.hpp"
 #include "eval/episode_schema.hpp"
+#include "eval/exact_numbers.hpp"
+#include "eval/json_shape.hpp"
 #include "eval/pillars.hpp"
 #include "fuzz/fuzz_target.hpp"
 
@@ -25,14 +31,32 @@ void score_both_profiles(const a3::eval::EpisodeFacts& facts) {
   }
 }
 
+// Parsed and depth-checked as the reader does, then validated by both.
+void require_validators_agree(std::string_view text) {
+  static const a3::eval::JsonSchemaValidator valijson(a3::eval::episode_schema_json(), a3::eval::kEpisodeSchemaName,
+                                                      a3::eval::SchemaEngine::kValijson);
+  static const a3::eval::CompiledSchema compiled(a3::eval::episode_schema_json(), a3::eval::kEpisodeSchemaName);
+  static a3::eval::ExactNumberParser parser;
+  static a3::eval::JsonShapeChecker shape;
+  if (std::memchr(text.data(), '\0', text.size()) != nullptr) return;
+  std::string buffer(text);
+  rapidjson::Document document;
+  if (parser.parse_insitu(document, buffer.data()).IsError()) return;
+  a3::eval::Violations violations;
+  if (shape.check(document, violations)) return;
+  a3::fuzz::require(valijson.is_valid(document) == compiled.is_valid(document),
+                    "the compiled schema and valijson disagree");
+}
+
 }  // namespace
 
 A3_FUZZ_TARGET(episode) {
   static const a3::eval::JsonSchemaValidator validator(a3::eval::episode_schema_json(), a3::eval::kEpisodeSchemaName);
   static const a3::eval::ScoringProfile profile = a3::eval::release_profile();
   static a3::eval::EpisodeReader reader(validator, profile);
-  const a3::eval::EpisodeCheck check =
-      reader.check_text(std::string_view(reinterpret_cast<const char*>(input.data()), input.size()));
+  const std::string_view text(reinterpret_cast<const char*>(input.data()), input.size());
+  require_validators_agree(text);
+  const a3::eval::EpisodeCheck check = reader.check_text(text);
   if (check.status == a3::eval::EpisodeStatus::kValid) score_both_profiles(check.facts);
   a3::fuzz::require(check.status != a3::eval::EpisodeStatus::kInvalid || !check.violations.empty(),
                     "an invalid episode without a reason");
