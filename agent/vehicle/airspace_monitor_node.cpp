@@ -97,8 +97,9 @@ void AirspaceMonitorNode::publish(const a3lcm::vehicle_state_t& s, const std::st
   bus_->publish(common::channels::kSafety, e);
 }
 
+template <typename WhatFn>
 void AirspaceMonitorNode::track(const a3lcm::vehicle_state_t& s, Violation& v, bool violating, bool cleared,
-                                const std::string& kind, double value, bool higher_is_worse, const std::string& what) {
+                                std::string_view kind, double value, bool higher_is_worse, const WhatFn& what) {
   if (!v.active) {
     if (!violating) return;
     v = {true, value, s.utime_us};
@@ -109,14 +110,15 @@ void AirspaceMonitorNode::track(const a3lcm::vehicle_state_t& s, Violation& v, b
       if (kind == "geofence_exit") ++counts_.geofence_exit;
       if (kind == "altitude_violation") ++counts_.altitude_violation;
     }
-    publish(s, kind, value, "enter: " + what);
+    publish(s, std::string(kind), value, "enter: " + what());
     return;
   }
   v.worst = higher_is_worse ? std::max(v.worst, value) : std::min(v.worst, value);
   if (!cleared) return;
   v.active = false;
   const double lasted_s = static_cast<double>(s.utime_us - v.since_us) * 1e-6;
-  publish(s, kind, v.worst, "leave: " + what + fmt(", lasted %.1f s", lasted_s) + fmt(", worst %.2f m", v.worst));
+  publish(s, std::string(kind), v.worst,
+          "leave: " + what() + fmt(", lasted %.1f s", lasted_s) + fmt(", worst %.2f m", v.worst));
 }
 
 void AirspaceMonitorNode::on_state(const a3lcm::vehicle_state_t& s) {
@@ -146,33 +148,36 @@ void AirspaceMonitorNode::on_state(const a3lcm::vehicle_state_t& s) {
     const double clearance = z.clearance_m(xy);
     const bool cleared = !inside && (clearance >= h || p.z() < z.floor_m - h || p.z() > z.ceiling_m + h);
     track(s, zones_[i], inside, cleared, "nfz_intrusion", std::max(-clearance, 0.0), true,
-          "no-fly zone " + z.id + fmt(" (%.2f m inside)", std::max(-clearance, 0.0)));
+          [&] { return "no-fly zone " + z.id + fmt(" (%.2f m inside)", std::max(-clearance, 0.0)); });
   }
 
   // Geofence.
   if (air.geofence.size() >= 3) {
     const double clearance = air.geofence_clearance_m(xy);
     track(s, fence_, !air.inside_geofence(xy), clearance >= h, "geofence_exit", std::max(-clearance, 0.0), true,
-          "geofence" + fmt(" (%.2f m outside)", std::max(-clearance, 0.0)));
+          [&] { return "geofence" + fmt(" (%.2f m outside)", std::max(-clearance, 0.0)); });
   }
 
   // Altitude envelope.
   track(s, high_, p.z() > air.max_altitude_m, p.z() <= air.max_altitude_m - h, "altitude_violation", p.z(), true,
-        "above the maximum " + fmt("%.1f m", air.max_altitude_m) + fmt(" at %.2f m", p.z()));
+        [&] { return "above the maximum " + fmt("%.1f m", air.max_altitude_m) + fmt(" at %.2f m", p.z()); });
   const double from_takeoff_m = (xy - takeoff_xy_).norm();
   const bool vertical_transit = std::abs(v.z()) >= config_.vertical_transit_speed_mps &&
                                 v.head<2>().norm() <= config_.vertical_transit_max_horizontal_mps;
   const bool exempt = !airborne_ || from_takeoff_m <= config_.takeoff_radius_m || vertical_transit;
   track(s, low_, !exempt && p.z() < air.min_altitude_m, exempt || p.z() >= air.min_altitude_m + h,
         "altitude_violation", p.z(), false,
-        "below the minimum " + fmt("%.1f m", air.min_altitude_m) + fmt(" at %.2f m", p.z()) +
-            fmt(", %.1f m from the take-off point", from_takeoff_m));
+        [&] {
+          return "below the minimum " + fmt("%.1f m", air.min_altitude_m) + fmt(" at %.2f m", p.z()) +
+                 fmt(", %.1f m from the take-off point", from_takeoff_m);
+        });
 
   // Separation from peers.
   for (auto& [id, peer] : peers_) {
     const double age_s = static_cast<double>(s.utime_us - peer.last.utime_us) * 1e-6;
     if (age_s > config_.traffic_timeout_s) {
-      track(s, peer.breach, false, true, "separation_breach", peer.breach.worst, false, "peer " + id + " (no longer reported)");
+      track(s, peer.breach, false, true, "separation_breach", peer.breach.worst, false,
+            [&] { return "peer " + id + " (no longer reported)"; });
       continue;
     }
     const double dt = std::max(age_s, 0.0);
@@ -185,7 +190,7 @@ void AirspaceMonitorNode::on_state(const a3lcm::vehicle_state_t& s) {
       if (!fresh) it->second = std::min(it->second, d);
     }
     track(s, peer.breach, d < peer.min_separation_m, d > peer.min_separation_m + h, "separation_breach", d, false,
-          "peer " + id + fmt(" at %.2f m", d) + fmt(", minimum %.1f m", peer.min_separation_m));
+          [&] { return "peer " + id + fmt(" at %.2f m", d) + fmt(", minimum %.1f m", peer.min_separation_m); });
   }
 
   // Crash.

@@ -23,6 +23,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "a3lcm/safety_event_t.hpp"
@@ -79,9 +80,11 @@ class AirspaceMonitorNode final : public common::Node {
   void on_state(const a3lcm::vehicle_state_t& s);
   void on_traffic(const a3lcm::traffic_state_t& t);
   void publish(const a3lcm::vehicle_state_t& s, const std::string& kind, double value, const std::string& detail);
-  // Starts or ends a violation; higher_is_worse says which way the value gets worse.
-  void track(const a3lcm::vehicle_state_t& s, Violation& v, bool violating, bool cleared, const std::string& kind,
-             double value, bool higher_is_worse, const std::string& what);
+  // Starts or ends a violation; higher_is_worse says which way the value gets worse. what()
+  // returns the violation's text, called only when an event is published (no text per state).
+  template <typename WhatFn>
+  void track(const a3lcm::vehicle_state_t& s, Violation& v, bool violating, bool cleared, std::string_view kind,
+             double value, bool higher_is_worse, const WhatFn& what);
 
   AirspaceMonitorConfig config_;
   common::Bus* bus_ = nullptr;
