@@ -1,13 +1,23 @@
 // The A2A tasks, each answered by its simulated peer: the swarm (collision_avoidance,
 // swarm_status_check, swarm_formation), the weather service (request_weather_update) and the
 // ground station (path_plan, handover_data: the handed-over images cross the downlink).
+// collision_avoidance's answer also says what it assumed for our own track (own_track: its
+// ground speed in the estimated wind) and the weather update gives the vehicle's own wind
+// estimate beside the forecast (vehicle_wind).
 #include "agent/vehicle/vehicle_tools.hpp"
+#include "agent/vehicle/wind_reports.hpp"
 
 namespace a3::agent {
 namespace {
 
 PeerAnswer collision_avoidance(VehicleServices& vehicle, const nlohmann::json& payload) {
-  return vehicle.swarm_peer().collision_avoidance(vehicle.self_view(), payload);
+  const SelfView self = vehicle.self_view();
+  PeerAnswer answer = vehicle.swarm_peer().collision_avoidance(self, payload);
+  if (self.known) {
+    answer.payload["own_track"] =
+        own_track_json(self, vehicle.gate().energy(), vehicle.wind_estimate(), vehicle.config().swarm.horizon_s);
+  }
+  return answer;
 }
 
 PeerAnswer swarm_status_check(VehicleServices& vehicle, const nlohmann::json&) {
@@ -19,7 +29,9 @@ PeerAnswer swarm_formation(VehicleServices& vehicle, const nlohmann::json& paylo
 }
 
 PeerAnswer request_weather_update(VehicleServices& vehicle, const nlohmann::json&) {
-  return vehicle.weather_service().weather_update(vehicle.self_view());
+  PeerAnswer answer = vehicle.weather_service().weather_update(vehicle.self_view());
+  if (answer.status == "ok") answer.payload["vehicle_wind"] = wind_report_json(vehicle.wind_estimate(), vehicle.now_s());
+  return answer;
 }
 
 PeerAnswer path_plan(VehicleServices& vehicle, const nlohmann::json& payload) {

@@ -1,4 +1,5 @@
-// Query tools: read_telemetry (the fc's estimate and the link's n_t) and check_geofence.
+// Query tools: read_telemetry (the fc's estimate, the link's n_t, the wind estimate and what
+// the vehicle makes good along its current leg) and check_geofence.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -6,12 +7,13 @@
 
 #include "agent/vehicle/observation_json.hpp"
 #include "agent/vehicle/vehicle_tools.hpp"
+#include "agent/vehicle/wind_reports.hpp"
 
 namespace a3::agent {
 namespace {
 
-const std::vector<std::string> kTelemetryFields = {"time_s", "pose",      "velocity", "speed_mps", "battery_pct",
-                                                   "mode",   "armed",     "failsafe", "link",      "route"};
+const std::vector<std::string> kTelemetryFields = {"time_s", "pose",     "velocity", "speed_mps", "battery_pct", "mode",
+                                                   "armed",  "failsafe", "link",     "route",     "wind",        "leg"};
 
 nlohmann::json finite_or_null(double x, int decimals) {
   if (!std::isfinite(x)) return nullptr;
@@ -45,6 +47,21 @@ nlohmann::json route_json(const OnboardRoute* route) {
           {"target", point_json(route->current().p_W_m)}};
 }
 
+// The horizontal leg being flown from p: the fc's return home, else the onboard route's
+// current waypoint; null when none (holding, taking off, landing, a go-to the server did not send).
+nlohmann::json leg_json(VehicleServices& vehicle, const a3lcm::fc_status_t& s, const Eigen::Vector3d& p) {
+  const EnergyModel& energy = vehicle.gate().energy();
+  FlownLeg leg;
+  if (s.mode == a3lcm::fc_status_t::RETURN_HOME) {
+    leg = return_home_leg(p, vehicle.config(), vehicle.speed_mps(), energy);
+  } else if (const OnboardRoute* route = vehicle.onboard_route()) {
+    leg = {"route", p, {route->current().p_W_m}, route->speed_mps()};
+  } else {
+    return nullptr;
+  }
+  return flown_leg_json(leg, energy, vehicle.wind_estimate().wind_W_mps());
+}
+
 void read_telemetry(VehicleServices& vehicle, const nlohmann::json& args) {
   std::set<std::string> wanted;
   if (args.contains("fields")) {
@@ -73,7 +90,9 @@ void read_telemetry(VehicleServices& vehicle, const nlohmann::json& args) {
                            {"armed", s.armed != 0},
                            {"failsafe", fc_failsafe_name(s.failsafe)},
                            {"link", link_json(vehicle.network_state())},
-                           {"route", route_json(vehicle.onboard_route())}};
+                           {"route", route_json(vehicle.onboard_route())},
+                           {"wind", wind_report_json(vehicle.wind_estimate(), vehicle.now_s())},
+                           {"leg", leg_json(vehicle, s, *vehicle.position())}};
   if (!wanted.empty()) {
     nlohmann::json picked = nlohmann::json::object();
     for (const auto& f : wanted) picked[f] = result[f];

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "agent/vehicle/tool_server_node.hpp"
+#include "agent/vehicle/wind_reports.hpp"
 
 namespace a3::agent {
 
@@ -28,24 +29,25 @@ SelfView ToolServerNode::self_view() const {
   if (!view.known) return view;
 
   std::vector<Eigen::Vector3d> targets;
-  double speed = speed_mps_;
+  view.commanded_speed_mps = speed_mps_;
   const int8_t mode = fc_status_ ? fc_status_->mode : static_cast<int8_t>(a3lcm::fc_status_t::HOLD);
-  bool extrapolate = false;
   if (route_) {
+    view.basis = TrackBasis::kRoute;
     targets = route_->remaining();
-    speed = route_->speed_mps();
+    view.commanded_speed_mps = route_->speed_mps();
   } else if (mode == a3lcm::fc_status_t::TAKEOFF && takeoff_target_W_m_) {
+    view.basis = TrackBasis::kTakeoff;
     targets = {*takeoff_target_W_m_};
   } else if (mode == a3lcm::fc_status_t::RETURN_HOME) {
-    targets = return_home_legs(view.p_W_m, config_.home_W_m, config_.gate.return_altitude_m,
-                               config_.airspace.min_altitude_m, config_.airspace.max_altitude_m);
-    speed = std::max(speed, gate_.energy().cruise_speed_mps);
+    view.basis = TrackBasis::kReturnHome;
+    const FlownLeg home = return_home_leg(view.p_W_m, config_, speed_mps_, gate_.energy());
+    targets = home.points;
+    view.commanded_speed_mps = home.commanded_speed_mps;
   } else if (mode == a3lcm::fc_status_t::LAND) {
+    view.basis = TrackBasis::kLand;
     targets = {Eigen::Vector3d(view.p_W_m.x(), view.p_W_m.y(), 0.0)};
   } else if (mode != a3lcm::fc_status_t::HOLD && mode != a3lcm::fc_status_t::DISARMED) {
-    extrapolate = true;
-  }
-  if (extrapolate) {
+    view.basis = TrackBasis::kVelocity;
     const double horizon_s = config_.swarm.horizon_s;
     view.predicted.path.push_back({view.now_s + horizon_s, view.p_W_m + view.v_W_mps * horizon_s});
     return view;
@@ -53,7 +55,7 @@ SelfView ToolServerNode::self_view() const {
   double t = view.now_s;
   Eigen::Vector3d from = view.p_W_m;
   for (const auto& target : targets) {
-    const double dt = gate_.energy().leg_time_s(from, target, speed);  // at the ground speed made good
+    const double dt = gate_.energy().leg_time_s(from, target, view.commanded_speed_mps);  // at the ground speed made good
     if (!std::isfinite(dt)) break;  // the wind holds the vehicle where it is
     if (dt <= 1e-6) continue;
     t += dt;

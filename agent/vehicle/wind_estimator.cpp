@@ -1,6 +1,7 @@
 // The drag-balance wind estimate, low-passed, seeded by the forecast.
 #include "agent/vehicle/wind_estimator.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -30,6 +31,15 @@ nlohmann::json wind_estimate_json(const WindEstimator& estimate) {
           {"source", estimate.source()}};
 }
 
+nlohmann::json wind_report_json(const WindEstimator& estimate, double now_s) {
+  nlohmann::json report = wind_estimate_json(estimate);
+  report["learned_s"] = std::round(estimate.airborne_s() * 10.0) / 10.0;
+  const auto updated_s = estimate.last_update_t_s();
+  report["age_s"] = updated_s ? nlohmann::json(std::round(std::max(now_s - *updated_s, 0.0) * 10.0) / 10.0)
+                              : nlohmann::json(nullptr);
+  return report;
+}
+
 WindEstimator::WindEstimator(AirframeLimits limits, Eigen::Vector2d forecast_W_mps, double smoothing_s,
                              double settle_s)
     : limits_(limits), wind_W_mps_(std::move(forecast_W_mps)), smoothing_s_(smoothing_s), settle_s_(settle_s) {
@@ -57,6 +67,7 @@ void WindEstimator::add(const WindSample& s) {
   const double alpha = dt / (smoothing_s_ + dt);
   wind_W_mps_ += alpha * (measured - wind_W_mps_);
   airborne_s_ += dt;
+  last_update_t_s_ = s.t_s;
 }
 
 }  // namespace a3::agent

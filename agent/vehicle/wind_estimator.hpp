@@ -17,6 +17,7 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
+#include <optional>
 #include <string>
 
 #include "agent/vehicle/ground_speed.hpp"
@@ -46,6 +47,9 @@ class WindEstimator {
   // "forecast" until settle_s of airborne samples, then "telemetry".
   std::string source() const { return airborne_s_ >= settle_s_ ? "telemetry" : "forecast"; }
   double airborne_s() const { return airborne_s_; }
+  // When a state of the vehicle last moved the estimate (run's clock); none while it is the
+  // forecast alone.
+  std::optional<double> last_update_t_s() const { return last_update_t_s_; }
 
   double max_accel_mps2 = 1.5;  // steady enough for the drag balance
 
@@ -56,6 +60,7 @@ class WindEstimator {
   double settle_s_;
   double last_t_s_ = -1.0;
   double airborne_s_ = 0.0;
+  std::optional<double> last_update_t_s_;
 };
 
 // The wind vector (ENU) for a report of speed and the direction it blows from (clockwise from
@@ -65,5 +70,9 @@ double wind_from_deg(const Eigen::Vector2d& wind_W_mps);
 
 // {"speed_mps", "from_deg", "source"}: the wind an ETA assumed, for observations.
 nlohmann::json wind_estimate_json(const WindEstimator& estimate);
+// The same plus how it was learned, for an agent reasoning about the wind: "learned_s" (seconds
+// of steady flight behind the estimate) and "age_s" (since a state last moved it, at now_s;
+// null while it is the forecast alone).
+nlohmann::json wind_report_json(const WindEstimator& estimate, double now_s);
 
 }  // namespace a3::agent
