@@ -1,8 +1,9 @@
 // Issue 15 as a whole episode: a 7 m/s headwind halves the ground speed the vehicle makes good,
 // so a patrol crossing its track, which the commanded 9 m/s would pass half a minute early,
 // meets it at the crossing. The vehicle's collision_avoidance prediction (own track at the
-// ground speed made good in the estimated wind) must call that conflict; without avoidance the
-// breach then happens, with the patrol asked to yield it does not.
+// ground speed made good in the estimated wind) must call that conflict, and say which ground
+// speed and wind it assumed; without avoidance the breach then happens, with the patrol asked to
+// yield it does not.
 // Scenario: tests/data/scenarios/headwind-crossing.json (75 s of mission per episode).
 #include <gtest/gtest.h>
 
@@ -126,6 +127,15 @@ TEST(WindConflict, TheHeadwindPredictionCallsTheConflictThatThenHappensWithoutAv
   // the commanded speed it would have been predicted at 24 s.
   const double asked_s = r.episode["_rig"]["turns"][0]["finished_s"].get<double>();
   EXPECT_NEAR(asked_s + peer["time_to_closest_s"].get<double>(), crossing_time_s(r.episode), 15.0) << answer.dump();
+  // The answer says why: our track was timed at the 3.5 m/s the Iris makes good into the 7 m/s
+  // forecast headwind (10.5 m/s of air speed), not at the commanded 9 m/s.
+  const json& own = answer["payload"]["own_track"];
+  EXPECT_EQ(own.value("basis", ""), "route") << own.dump();
+  EXPECT_EQ(own.value("commanded_speed_mps", 0.0), kCommanded_mps) << own.dump();
+  EXPECT_NEAR(own.value("ground_speed_mps", 0.0), 10.5 - 7.0, 0.1) << own.dump();
+  EXPECT_EQ(own["wind"].value("source", ""), "forecast") << own.dump();
+  EXPECT_NEAR(own["wind"].value("speed_mps", 0.0), 7.0, 0.05) << own.dump();
+  EXPECT_NEAR(own["wind"].value("from_deg", 0.0), 90.0, 0.5) << own.dump();
   EXPECT_TRUE(r.episode["final_state"]["safety_flags"]["separation_breach"].get<bool>());
   EXPECT_GE(breaches(r.episode), 1);
   // In flight the estimate comes from the drag balance: the forecast 7 m/s from the east, plus
