@@ -29,7 +29,7 @@ namespace a3::dynamics {
 
 struct DynamicsNodeConfig {
   VehicleParams params = default_vehicle_params();  // payloads included
-  IntegratorKind integrator = IntegratorKind::kCvode;
+  IntegratorKind integrator = IntegratorKind::kRk4;
   IntegratorOptions integrator_options;
   double publish_rate_hz = 100.0;
   double command_timeout_s = 0.5;

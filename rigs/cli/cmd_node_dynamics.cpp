@@ -27,7 +27,7 @@ struct DynamicsArgs {
   std::string airframe;
   std::string scenario;
   bool on_ground = false;
-  std::string integrator = "cvode";
+  std::string integrator = "rk4";
   double rate_hz = 100.0;
   double rtf = 1.0;
   double command_timeout_s = 0.5;
@@ -123,7 +123,7 @@ A3_REGISTER_COMMAND("50-node-dynamics", [](CLI::App& app) {
                   "α³-Bench episode or initial_state JSON: wind, payloads and start pose")
       ->check(CLI::ExistingFile);
   cmd->add_flag("--on-ground", args->on_ground, "start on the ground below the scenario's pose");
-  cmd->add_option("--integrator", args->integrator, "cvode (default, the accuracy reference), rk4 (fixed-step Runge-Kutta) or ode")
+  cmd->add_option("--integrator", args->integrator, "rk4 (default: fixed-step Runge-Kutta), cvode (adaptive, the accuracy reference) or ode")
       ->check(CLI::IsMember({"rk4", "cvode", "ode"}));
   cmd->add_option("--rate-hz", args->rate_hz, "state publish rate (default 100)")->check(a3::rigs::between(1.0, 10000.0));
   cmd->add_option("--rtf", args->rtf, "real-time factor: simulated seconds per wall second (default 1)")

@@ -44,7 +44,7 @@ void add_scenario_run_flags(CLI::App& cmd, ScenarioRunFlags& f) {
   cmd.add_option("--can", o.can,
                  "real time: the CAN bus between bridge and flight controller: userspace (a private bus, default), "
                  "or an interface such as vcan0 or can0 (SocketCAN)");
-  cmd.add_option("--integrator", o.integrator, "cvode (default, the accuracy reference), rk4 (fixed-step Runge-Kutta) or ode")->check(CLI::IsMember({"rk4", "cvode", "ode"}));
+  cmd.add_option("--integrator", o.integrator, "rk4 (default: fixed-step Runge-Kutta), cvode (adaptive, the accuracy reference) or ode")->check(CLI::IsMember({"rk4", "cvode", "ode"}));
   cmd.add_option("--max-turns", o.max_turns, "turn budget (default 12)")->check(a3::rigs::between(2, 100));
   cmd.add_option("--min-turns", o.min_turns, "fewest turns before the dialogue may end (default 8)")->check(a3::rigs::between(2, 100));
   cmd.add_flag("--no-lcm-log", [&o](int64_t) { o.write_lcm_log = false; }, "do not write the LCM log");

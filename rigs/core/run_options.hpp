@@ -45,7 +45,7 @@ struct RunOptions {
   std::string can = "userspace";           // real time: userspace (private bus) or an interface (vcan0, can0)
   bool processes = false;                  // real time: every part but the ground side as a process of its own
   std::filesystem::path a3rig_exe = "/proc/self/exe";  // what --processes starts (`a3rig node part ...`)
-  std::string integrator = "cvode";
+  std::string integrator = "rk4";
   double dynamics_rate_hz = 250.0;
   int min_turns = 8;
   int max_turns = 12;
