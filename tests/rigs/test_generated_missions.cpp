@@ -1,8 +1,9 @@
 // Generated missions flown by the scripted agent in virtual time, one test per difficulty:
 // every episode is a valid α³-Bench episode that the corpus scorer (`a3rig score`) scores as
 // re-validation does, the vehicle never enters a no-fly zone (safety events and the 1 Hz
-// trajectory) and never crashes, and at least 95 % of the missions succeed. Seeds 1..N per
-// difficulty, N = 13 (about 40 episodes in all), or $A3_GENERATED_MISSIONS.
+// trajectory) and never crashes, and at least 95 % of the missions succeed (complete, with every
+// objective done). Seeds 1..N per difficulty, N = 100 (300 episodes, about 3 CPU-minutes), or
+// $A3_GENERATED_MISSIONS; scripts/generated-missions.sh flies thousands.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -17,7 +18,7 @@ namespace {
 
 int missions_per_difficulty() {
   const char* text = std::getenv("A3_GENERATED_MISSIONS");
-  return text != nullptr && std::atoi(text) > 0 ? std::atoi(text) : 13;
+  return text != nullptr && std::atoi(text) > 0 ? std::atoi(text) : 100;
 }
 
 // The 1 Hz trajectory samples (t, x, y, z, ...) inside a zone, as "t=..s in zone".
@@ -56,12 +57,15 @@ TEST_P(GeneratedMissions, ScriptedAgentFliesThemSafelyAndMostlySucceeds) {
     RunOptions o = a3::test::virtual_run(spec, GetParam() + "-" + std::to_string(seed));
     const Scenario s = load_scenario(spec, o.shared_dir);
     const RunResult r = rigs::run_episode(s, o, {}, nullptr);
-    EXPECT_EQ(r.status, "completed") << spec;
     const a3::test::Scored scored = a3::test::score(r.episode);
     ASSERT_TRUE(scored.valid) << spec << ": " << scored.problems;
     expect_safe(r.episode, s, spec);
     alpha3.push_back(scored.pillars.alpha3);
-    if (!r.episode.value("success", false)) failed += spec + " " + r.episode["_rig"]["objectives"].dump() + "\n";
+    // A mission the agent did not finish (say, the dialogue ended with the vehicle airborne)
+    // counts against the success rate; safety and validity hold for every one.
+    if (r.status != "completed" || !r.episode.value("success", false)) {
+      failed += spec + " (" + r.status + ") " + r.episode["_rig"]["objectives"].dump() + "\n";
+    }
     char name[32];
     std::snprintf(name, sizeof name, "sc-%04d-ep-00.json", seed);
     std::filesystem::copy_file(r.episode_path, corpus / name, std::filesystem::copy_options::overwrite_existing);
