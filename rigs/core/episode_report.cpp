@@ -11,6 +11,7 @@
 #include "common/json_file.hpp"
 #include "common/json_text.hpp"
 #include "rigs/core/episode_score.hpp"
+#include "rigs/core/html_text.hpp"
 #include "rigs/core/report_assets.hpp"
 #include "rigs/core/report_world.hpp"
 
@@ -38,20 +39,6 @@ std::string script_safe_json(const nlohmann::json& data) {
       out += "\\u003c";
     } else {
       out += c;
-    }
-  }
-  return out;
-}
-
-std::string html_escaped(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
     }
   }
   return out;

@@ -6,25 +6,12 @@
 #include <sstream>
 
 #include "common/atomic_file.hpp"
+#include "rigs/core/html_text.hpp"
 
 namespace a3::rigs::sweep {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string escaped(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 std::string number(double v, int digits) {
   char text[32];
@@ -50,8 +37,8 @@ void plots_section(std::ostream& html, const fs::path& out_dir, const std::vecto
   html << "<h2>Plots</h2>\n";
   for (const fs::path& png : pngs) {
     const std::string rel = fs::relative(png, out_dir).generic_string();
-    html << "<figure><img class=\"plot\" src=\"" << escaped(rel) << "\" alt=\"" << escaped(rel) << "\"><figcaption>"
-         << escaped(rel) << "</figcaption></figure>\n";
+    html << "<figure><img class=\"plot\" src=\"" << html_escaped(rel) << "\" alt=\"" << html_escaped(rel) << "\"><figcaption>"
+         << html_escaped(rel) << "</figcaption></figure>\n";
   }
 }
 
@@ -59,8 +46,8 @@ void aggregate_section(std::ostream& html, const std::vector<AggregateRow>& aggr
   html << "<h2>Aggregate (95 % intervals)</h2>\n<table id=\"aggregate\"><tr><th>scenario</th><th>agent</th>"
           "<th>think time</th><th>slice</th><th>n</th><th>α³</th><th>SP</th><th>success</th></tr>\n";
   for (const AggregateRow& a : aggregates) {
-    html << "<tr><td>" << escaped(a.scenario) << "</td><td>" << escaped(a.agent) << "</td><td>" << escaped(a.think_time)
-         << "</td><td>" << escaped(a.slice) << "</td><td>" << a.n << "</td><td>" << with_interval(a.alpha3_mean, a.alpha3_ci, 3)
+    html << "<tr><td>" << html_escaped(a.scenario) << "</td><td>" << html_escaped(a.agent) << "</td><td>" << html_escaped(a.think_time)
+         << "</td><td>" << html_escaped(a.slice) << "</td><td>" << a.n << "</td><td>" << with_interval(a.alpha3_mean, a.alpha3_ci, 3)
          << "</td><td>" << with_interval(a.sp_mean, a.sp_ci, 3) << "</td><td>"
          << with_interval(a.success_rate, a.success_ci, 2) << "</td></tr>\n";
   }
@@ -72,11 +59,11 @@ void cells_section(std::ostream& html, const fs::path& out_dir, const std::vecto
           "<th>seed</th><th>status</th><th>success</th><th>α³</th><th>episode</th></tr>\n";
   for (const ResultRow& r : rows) {
     const std::string link = cell_link(out_dir, r);
-    html << "<tr class=\"cell\"><td>" << escaped(r.scenario) << "</td><td>" << escaped(r.agent) << "</td><td>"
-         << escaped(r.think_time) << "</td><td>" << escaped(r.slice) << "</td><td>" << r.seed << "</td><td>"
-         << escaped(r.status) << "</td><td>" << (r.success ? "yes" : "no") << "</td><td>"
+    html << "<tr class=\"cell\"><td>" << html_escaped(r.scenario) << "</td><td>" << html_escaped(r.agent) << "</td><td>"
+         << html_escaped(r.think_time) << "</td><td>" << html_escaped(r.slice) << "</td><td>" << r.seed << "</td><td>"
+         << html_escaped(r.status) << "</td><td>" << (r.success ? "yes" : "no") << "</td><td>"
          << (r.has_episode ? number(r.alpha3, 4) : "–") << "</td><td>"
-         << (link.empty() ? "–" : "<a href=\"" + escaped(link) + "\">" + (link.size() > 11 && link.substr(link.size() - 11) == "report.html" ? "report" : "episode") + "</a>")
+         << (link.empty() ? "–" : "<a href=\"" + html_escaped(link) + "\">" + (link.size() > 11 && link.substr(link.size() - 11) == "report.html" ? "report" : "episode") + "</a>")
          << "</td></tr>\n";
   }
   html << "</table>\n";
@@ -98,9 +85,9 @@ constexpr const char* kScript =
 std::string sweep_index_html(const fs::path& out_dir, const std::vector<ResultRow>& rows,
                              const std::vector<AggregateRow>& aggregates, const std::vector<fs::path>& pngs) {
   std::ostringstream html;
-  html << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>sweep " << escaped(out_dir.filename().string())
+  html << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>sweep " << html_escaped(out_dir.filename().string())
        << "</title><style>" << kStyle << "</style><script>" << kScript << "</script></head><body>\n<h1>Sweep: "
-       << escaped(out_dir.string()) << "</h1>\n<p>" << rows.size() << " cells; results.csv and aggregate.csv beside this page.</p>\n";
+       << html_escaped(out_dir.string()) << "</h1>\n<p>" << rows.size() << " cells; results.csv and aggregate.csv beside this page.</p>\n";
   plots_section(html, out_dir, pngs);
   aggregate_section(html, aggregates);
   cells_section(html, out_dir, rows);
