@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "common/json_pointer.hpp"
+
 namespace a3::eval {
 
 JsonSchemaValidator::JsonSchemaValidator(std::string_view schema_json,
@@ -59,15 +61,7 @@ std::string context_to_json_pointer(const std::vector<std::string>& context) {
       token = token.substr(1, token.size() - 2);
     }
     pointer += '/';
-    for (char c : token) {
-      if (c == '~') {
-        pointer += "~0";
-      } else if (c == '/') {
-        pointer += "~1";
-      } else {
-        pointer += c;
-      }
-    }
+    pointer += common::json_pointer_token(token);
   }
   return pointer;
 }

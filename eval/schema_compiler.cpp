@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/json_pointer.hpp"
 #include "eval/valijson_values.hpp"
 
 namespace a3::eval {
@@ -52,22 +53,8 @@ namespace {
 
 const std::set<std::string> kAnnotations = {"$schema", "title", "description", "$comment"};
 
-std::string escape_token(std::string_view token) {
-  std::string out;
-  for (char c : token) {
-    if (c == '~') {
-      out += "~0";
-    } else if (c == '/') {
-      out += "~1";
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
-
 std::string child(const std::string& pointer, std::string_view token) {
-  return pointer + "/" + escape_token(token);
+  return pointer + "/" + common::json_pointer_token(token);
 }
 
 std::string name_of(const rapidjson::Value& name) { return std::string(name.GetString(), name.GetStringLength()); }
