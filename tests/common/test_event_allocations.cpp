@@ -1,6 +1,7 @@
 // The virtual-time event path allocates nothing per event once warmed up: scheduling and
 // running one-shot and periodic timers (small callbacks), cancelling timers, timers that
-// replace themselves, and publishing raw bytes on the VirtualBus and delivering them.
+// replace themselves, publishing raw bytes on the VirtualBus and delivering them, and typed
+// publish and typed (decoding) delivery.
 // Counted by replacing operator new in this test program; each test warms up with the same
 // workload first (vectors reach capacity). The virtual CAN bus has its own in tests/bridge.
 #include <gtest/gtest.h>
@@ -9,9 +10,11 @@
 #include <string>
 #include <vector>
 
+#include "a3lcm/vehicle_state_t.hpp"
 #include "common/timer_queue.hpp"
 #include "common/virtual_bus.hpp"
 #include "common/virtual_scheduler.hpp"
+#include "tests/common/bus_test_messages.hpp"
 #include "tests/common/counting_operator_new.hpp"
 
 namespace a3::common {
@@ -92,6 +95,41 @@ TEST(EventAllocations, VirtualBusPublishAndDeliveryAllocateNothingAfterWarmUp) {
   EXPECT_EQ(allocations_counted(), 0);
   EXPECT_EQ(state_bytes, 2u * 1000u * 3u * payload.size());
   EXPECT_EQ(command_bytes, 2u * 1000u * 3u * reply.size());
+}
+
+// The same pattern through the typed helpers: publish encodes into a reused buffer, also from
+// inside a handler, and several typed subscribers decode (once) without allocating.
+TEST(EventAllocations, TypedPublishAndDeliveryAllocateNothingAfterWarmUp) {
+  VirtualScheduler scheduler;
+  VirtualBus bus(scheduler);
+  const std::string state = "A3_VEHICLE_STATE_FOR_TESTS", echo = "A3_STATE_ECHO_FOR_TESTS";
+  int64_t state_sum = 0, echo_sum = 0;
+  for (int s = 0; s < 3; ++s) {
+    bus.subscribe<a3lcm::vehicle_state_t>(state, [&](const a3lcm::vehicle_state_t& m, int64_t) {
+      state_sum += m.utime_us;
+      a3lcm::vehicle_state_t reply = m;
+      reply.utime_us = m.utime_us + 1;
+      bus.publish(echo, reply);
+    });
+  }
+  bus.subscribe<a3lcm::vehicle_state_t>(echo, [&echo_sum](const a3lcm::vehicle_state_t& m, int64_t) {
+    echo_sum += m.utime_us;
+  });
+  int64_t t = 0;
+  auto round = [&] {
+    for (int i = 0; i < 1000; ++i) {
+      bus.publish(state, test::make_state(++t));
+      if (i % 3 == 0) scheduler.run_until(scheduler.clock().now_us() + 10);
+    }
+    scheduler.run_until(scheduler.clock().now_us() + 10);
+  };
+  round();
+  start_counting_allocations();
+  round();
+  EXPECT_EQ(allocations_counted(), 0);
+  const int64_t sum_of_times = t * (t + 1) / 2;  // every utime 1..t, each to 3 subscribers
+  EXPECT_EQ(state_sum, 3 * sum_of_times);
+  EXPECT_EQ(echo_sum, 3 * (sum_of_times + t));
 }
 
 // A periodic timer that, now and then, cancels itself and starts its replacement from inside
