@@ -9,10 +9,14 @@ namespace a3::common {
 namespace {
 
 // std::push_heap / pop_heap build a max-heap: "greater" puts the earliest entry on top.
-template <typename Entry>
-bool later(const Entry& a, const Entry& b) {
-  return a.time_us != b.time_us ? a.time_us > b.time_us : a.seq > b.seq;
-}
+// A function object, not a function pointer, so the heap operations inline the comparison.
+struct Later {
+  template <typename Entry>
+  bool operator()(const Entry& a, const Entry& b) const {
+    return a.time_us != b.time_us ? a.time_us > b.time_us : a.seq > b.seq;
+  }
+};
+constexpr Later later{};
 
 }  // namespace
 
@@ -37,15 +41,31 @@ void TimerQueue::release_slot(uint32_t slot) {
 }
 
 void TimerQueue::push_entry(int64_t time_us, TimerId id) {
-  heap_.push_back(Entry{time_us, next_seq_++, id});
-  std::push_heap(heap_.begin(), heap_.end(), later<Entry>);
+  const Entry entry{time_us, next_seq_++, id};
+  // Appending keeps the FIFO sorted: its sequence numbers only grow, and so must its times.
+  if (time_us == current_us_ && (fifo_head_ == fifo_.size() || fifo_.back().time_us <= time_us)) {
+    fifo_.push_back(entry);
+    return;
+  }
+  heap_.push_back(entry);
+  std::push_heap(heap_.begin(), heap_.end(), later);
 }
 
 void TimerQueue::drop_cancelled_top() const {
   while (!heap_.empty() && !is_live(heap_.front())) {
-    std::pop_heap(heap_.begin(), heap_.end(), later<Entry>);
+    std::pop_heap(heap_.begin(), heap_.end(), later);
     heap_.pop_back();
   }
+  while (fifo_head_ < fifo_.size() && !is_live(fifo_[fifo_head_])) ++fifo_head_;
+  if (fifo_head_ == fifo_.size()) {
+    fifo_.clear();  // keeps its capacity
+    fifo_head_ = 0;
+  }
+}
+
+bool TimerQueue::fifo_first() const {
+  if (fifo_head_ == fifo_.size()) return false;
+  return heap_.empty() || later(heap_.front(), fifo_[fifo_head_]);
 }
 
 // Cancelled entries wait in the heap until they reach the top; when they outnumber the live
@@ -54,7 +74,7 @@ void TimerQueue::compact_if_mostly_cancelled() {
   if (heap_.size() < 64 || heap_.size() < 2 * live_) return;
   heap_.erase(std::remove_if(heap_.begin(), heap_.end(), [this](const Entry& e) { return !is_live(e); }),
               heap_.end());
-  std::make_heap(heap_.begin(), heap_.end(), later<Entry>);
+  std::make_heap(heap_.begin(), heap_.end(), later);
 }
 
 TimerId TimerQueue::add(int64_t first_us, int64_t period_us, std::function<void()> fn) {
@@ -77,16 +97,24 @@ void TimerQueue::cancel(TimerId id) {
 
 std::optional<int64_t> TimerQueue::next_time_us() const {
   drop_cancelled_top();
+  if (fifo_first()) return fifo_[fifo_head_].time_us;
   if (heap_.empty()) return std::nullopt;
   return heap_.front().time_us;
 }
 
 std::optional<TimerQueue::Due> TimerQueue::pop_due(int64_t t_us) {
   drop_cancelled_top();
-  if (heap_.empty() || heap_.front().time_us > t_us) return std::nullopt;
-  std::pop_heap(heap_.begin(), heap_.end(), later<Entry>);
-  const Entry entry = heap_.back();
-  heap_.pop_back();
+  Entry entry{};
+  if (fifo_first()) {
+    if (fifo_[fifo_head_].time_us > t_us) return std::nullopt;
+    entry = fifo_[fifo_head_++];
+  } else {
+    if (heap_.empty() || heap_.front().time_us > t_us) return std::nullopt;
+    std::pop_heap(heap_.begin(), heap_.end(), later);
+    entry = heap_.back();
+    heap_.pop_back();
+  }
+  current_us_ = entry.time_us;
   Slot& slot = slots_[entry.id & kSlotMask];
   if (slot.period_us > 0) push_entry(entry.time_us + slot.period_us, entry.id);
   return Due{entry.id, entry.time_us, slot.period_us, std::move(slot.fn)};

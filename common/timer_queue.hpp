@@ -3,6 +3,9 @@
 // Allocation-free in steady state: timers live in reused slots, the order is a binary heap
 // in a reused vector (a cancelled timer's entry is dropped when it reaches the top), and a
 // callback is moved, never copied (a std::function's small-buffer callable stays inline).
+// Timers added for the time of the timer last popped (a bus delivery, a frame arbitrated
+// "now") skip the heap: they wait in a FIFO, which is already in (time, insertion) order,
+// and pop_due takes the earlier of the FIFO's front and the heap's top.
 #pragma once
 
 #include <cstdint>
@@ -57,11 +60,17 @@ class TimerQueue {
   bool is_live(const Entry& entry) const { return slots_[entry.id & kSlotMask].id == entry.id; }
   void push_entry(int64_t time_us, TimerId id);
   void drop_cancelled_top() const;
+  // True when the FIFO's front comes before the heap's top (both without cancelled entries).
+  bool fifo_first() const;
   void compact_if_mostly_cancelled();
 
   std::vector<Slot> slots_;
   std::vector<uint32_t> free_slots_;
   mutable std::vector<Entry> heap_;  // min-heap on (time_us, seq); may hold cancelled entries
+  // Entries in (time_us, seq) order from fifo_head_ on; may hold cancelled entries.
+  mutable std::vector<Entry> fifo_;
+  mutable std::size_t fifo_head_ = 0;
+  int64_t current_us_ = INT64_MIN;  // the time of the timer last popped
   std::size_t live_ = 0;
   uint64_t next_seq_ = 0;
   uint64_t next_serial_ = 1;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -221,6 +222,93 @@ TEST(TimerQueue, OrderMatchesAStableSortWithManyTiesAndCancels) {
   std::vector<std::string> times;
   drain(queue, 100, times);
   EXPECT_EQ(ran, expected);
+  EXPECT_EQ(queue.size(), 0u);
+}
+
+// Callbacks add timers for their own time (these take the queue's FIFO) and for later, and
+// cancel pending ones; each timer that runs must be the earliest (time, insertion) of those
+// pending, as a reference list kept beside the queue says.
+TEST(TimerQueue, TimersAddedForTheCurrentTimeKeepTheOrder) {
+  TimerQueue queue;
+  std::mt19937 rng(42);
+  struct Ref {
+    int64_t time_us;
+    uint64_t order;
+    TimerId id;
+    bool pending;
+  };
+  std::vector<Ref> refs;  // index = label
+  int runs = 0, wrong = 0, cancels = 0, now_adds = 0;
+  std::function<void(int64_t)> add;
+  auto run = [&](int label) {
+    ++runs;
+    int expected = -1;
+    for (int i = 0; i < static_cast<int>(refs.size()); ++i) {
+      if (!refs[i].pending) continue;
+      if (expected < 0 || refs[i].time_us < refs[expected].time_us ||
+          (refs[i].time_us == refs[expected].time_us && refs[i].order < refs[expected].order)) {
+        expected = i;
+      }
+    }
+    wrong += label == expected ? 0 : 1;
+    refs[label].pending = false;
+    const int64_t now = refs[label].time_us;
+    if (refs.size() < 4000) {
+      const int n = 1 + static_cast<int>(rng() % 2);
+      for (int k = 0; k < n; ++k) {
+        const bool at_now = rng() % 2 == 0;
+        now_adds += at_now ? 1 : 0;
+        add(at_now ? now : now + static_cast<int64_t>(rng() % 4));
+      }
+    }
+    if (rng() % 4 == 0) {
+      const std::size_t victim = rng() % refs.size();
+      if (refs[victim].pending) {
+        queue.cancel(refs[victim].id);
+        refs[victim].pending = false;
+        ++cancels;
+      }
+    }
+  };
+  add = [&](int64_t t) {
+    const int label = static_cast<int>(refs.size());
+    refs.push_back({t, refs.size(), 0, true});
+    refs[label].id = queue.add(t, 0, [&run, label] { run(label); });
+  };
+  for (int i = 0; i < 50; ++i) add(static_cast<int64_t>(rng() % 10));
+  std::vector<std::string> times;
+  drain(queue, 1'000'000, times);
+  EXPECT_EQ(wrong, 0);
+  EXPECT_EQ(queue.size(), 0u);
+  EXPECT_GT(runs, 1000);
+  EXPECT_GT(now_adds, 300);
+  EXPECT_GT(cancels, 50);
+  EXPECT_TRUE(std::none_of(refs.begin(), refs.end(), [](const Ref& r) { return r.pending; }));
+}
+
+TEST(TimerQueue, ATimerForTheCurrentTimeRunsAfterThoseAlreadyDueThenAndCanBeCancelled) {
+  TimerQueue queue;
+  std::vector<std::string> order;
+  TimerId doomed = 0;
+  queue.add(10, 0, [&] {
+    order.push_back("a");
+    queue.add(10, 0, [&] { order.push_back("c"); });
+    doomed = queue.add(10, 0, [&] { order.push_back("never"); });
+    queue.add(10, 0, [&] {
+      order.push_back("d");
+      queue.add(10, 0, [&] { order.push_back("e"); });
+    });
+    queue.cancel(doomed);
+  });
+  queue.add(10, 0, [&] { order.push_back("b"); });
+  queue.add(11, 0, [&] { order.push_back("f"); });
+  EXPECT_EQ(queue.next_time_us(), 10);
+  std::vector<std::string> times;
+  drain(queue, 10, times);
+  EXPECT_EQ(order, (std::vector<std::string>{"a", "b", "c", "d", "e"}));
+  EXPECT_EQ(queue.next_time_us(), 11);
+  drain(queue, 11, times);
+  EXPECT_EQ(order.back(), "f");
   EXPECT_EQ(queue.size(), 0u);
 }
 
