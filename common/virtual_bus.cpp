@@ -54,9 +54,15 @@ void VirtualBus::deliver_next() {
 }
 
 void VirtualBus::hand_to_subscriber(SubscriptionId subscriber, const Message& message) {
-  auto it = subscribers_.find(subscriber);
-  if (it == subscribers_.end()) return;  // unsubscribed while the message was in flight
-  const std::shared_ptr<RawHandler> handler = it->second.handler;
+  RawHandler* handler = subscribers_[subscriber - 1].handler.get();
+  if (handler == nullptr) return;  // unsubscribed while the message was in flight
+  struct Delivering {
+    VirtualBus& bus;
+    explicit Delivering(VirtualBus& b) : bus(b) { ++bus.delivering_; }
+    ~Delivering() {
+      if (--bus.delivering_ == 0) bus.retired_.clear();
+    }
+  } delivering(*this);
   (*handler)(message.channel, message.bytes.data(), message.bytes.size(), executor_.clock().now_us());
 }
 
@@ -84,17 +90,19 @@ VirtualBus::Delivery VirtualBus::pop_delivery() {
 
 SubscriptionId VirtualBus::subscribe_raw(const std::string& channel, RawHandler handler) {
   const SubscriptionId id = next_id_++;
-  subscribers_.emplace(id, Subscriber{channel, std::make_shared<RawHandler>(std::move(handler))});
+  subscribers_.push_back(Subscriber{channel, std::make_unique<RawHandler>(std::move(handler))});
   by_channel_[channel].push_back(id);
   return id;
 }
 
 void VirtualBus::unsubscribe(SubscriptionId id) {
-  const auto it = subscribers_.find(id);
-  if (it == subscribers_.end()) return;
-  std::vector<SubscriptionId>& ids = by_channel_[it->second.channel];
+  if (id == 0 || id > subscribers_.size() || subscribers_[id - 1].handler == nullptr) return;
+  Subscriber& subscriber = subscribers_[id - 1];
+  std::vector<SubscriptionId>& ids = by_channel_[subscriber.channel];
   ids.erase(std::remove(ids.begin(), ids.end(), id), ids.end());
-  subscribers_.erase(it);
+  // The handler may be the one running (it unsubscribed itself): keep it until that ends.
+  if (delivering_ > 0) retired_.push_back(std::move(subscriber.handler));
+  subscriber.handler.reset();
 }
 
 }  // namespace a3::common

@@ -7,9 +7,10 @@
 // (so they run in the order scheduled) and on nothing but the bus's destructor cancelling
 // one (unsubscribe leaves the event, which then delivers nothing).
 // The executor must outlive the bus (the bus cancels its pending deliveries when it goes).
+// Subscribers are found by index (ids are handed out in order); a handler unsubscribed while
+// a delivery runs is kept until the delivery ends, as it may be the one running.
 #pragma once
 
-#include <map>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -36,7 +37,7 @@ class VirtualBus final : public Bus {
  private:
   struct Subscriber {
     std::string channel;
-    std::shared_ptr<RawHandler> handler;  // shared: a handler may unsubscribe itself
+    std::unique_ptr<RawHandler> handler;  // null once unsubscribed
   };
   struct Message {
     std::string channel;
@@ -58,7 +59,9 @@ class VirtualBus final : public Bus {
   Delivery pop_delivery();
 
   Executor& executor_;
-  std::map<SubscriptionId, Subscriber> subscribers_;
+  std::vector<Subscriber> subscribers_;  // subscription id - 1
+  int delivering_ = 0;                    // handlers running now
+  std::vector<std::unique_ptr<RawHandler>> retired_;  // unsubscribed while delivering_ > 0
   // Each channel's subscribers in subscription order: the order a message is delivered in.
   std::unordered_map<std::string, std::vector<SubscriptionId>> by_channel_;
   SubscriptionId next_id_ = 1;
