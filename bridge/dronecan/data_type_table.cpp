@@ -24,11 +24,17 @@ void DataTypeTable::add(std::string full_name, TransferKind kind, uint16_t data_
   it->second = Entry{std::move(full_name), kind,
                      data_type_id,        signature,
                      transfer_crc_seed(signature), max_payload_bytes};
+  const uint32_t k = key(kind, data_type_id);
+  index_.insert(std::lower_bound(index_.begin(), index_.end(), k,
+                                 [](const auto& item, uint32_t value) { return item.first < value; }),
+                {k, &it->second});
 }
 
 const DataTypeTable::Entry* DataTypeTable::find(TransferKind kind, uint16_t data_type_id) const {
-  const auto it = entries_.find(key(kind, data_type_id));
-  return it == entries_.end() ? nullptr : &it->second;
+  const uint32_t k = key(kind, data_type_id);
+  const auto it = std::lower_bound(index_.begin(), index_.end(), k,
+                                   [](const auto& item, uint32_t value) { return item.first < value; });
+  return it != index_.end() && it->first == k ? it->second : nullptr;
 }
 
 std::vector<DataTypeTable::Entry> DataTypeTable::entries() const {

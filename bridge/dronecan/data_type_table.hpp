@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "bridge/dronecan/dsdl_types.hpp"
@@ -42,7 +43,9 @@ class DataTypeTable {
   static uint32_t key(TransferKind kind, uint16_t data_type_id) {
     return (static_cast<uint32_t>(kind) << 16) | data_type_id;
   }
-  std::unordered_map<uint32_t, Entry> entries_;
+  std::unordered_map<uint32_t, Entry> entries_;  // stable addresses for find()'s pointers
+  // (key, entry) sorted by key: find() runs for every received frame, a hash lookup costs more.
+  std::vector<std::pair<uint32_t, const Entry*>> index_;
 };
 
 }  // namespace a3::bridge

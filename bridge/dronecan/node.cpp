@@ -95,9 +95,26 @@ void DroneCanNode::on_frame(const CanFrame& frame, int64_t rx_time_us) {
   if (verdict != FrameVerdict::kTransferComplete || transfer.header.kind != TransferKind::kMessage) {
     return;
   }
-  const auto it = handlers_.find(transfer.header.data_type_id);
-  if (it == handlers_.end()) return;
-  for (const auto& handler : it->second) handler(transfer);
+  // By index: a handler that subscribes to another type may grow handlers_.
+  for (std::size_t i = 0; i < handlers_.size(); ++i) {
+    if (handlers_[i].first != transfer.header.data_type_id) continue;
+    for (std::size_t j = 0; j < handlers_[i].second.size(); ++j) handlers_[i].second[j](transfer);
+    return;
+  }
+}
+
+uint8_t& DroneCanNode::next_transfer_id(uint16_t data_type_id) {
+  for (auto& [id, next] : next_transfer_id_) {
+    if (id == data_type_id) return next;
+  }
+  return next_transfer_id_.emplace_back(data_type_id, uint8_t{0}).second;
+}
+
+std::vector<DroneCanNode::TransferHandler>& DroneCanNode::handlers_for(uint16_t data_type_id) {
+  for (auto& [id, handlers] : handlers_) {
+    if (id == data_type_id) return handlers;
+  }
+  return handlers_.emplace_back(data_type_id, std::vector<TransferHandler>{}).second;
 }
 
 void DroneCanNode::warn_once(const std::string& key, const std::string& message) {

@@ -12,6 +12,7 @@
 #include <memory>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "bridge/can/can_bus.hpp"
@@ -58,7 +59,7 @@ class DroneCanNode {
   template <DsdlCompound Msg>
   bool publish(const Msg& msg, uint8_t priority = kPriorityMedium) {
     TransferHeader header = message_header<Msg>(config_.node_id, 0, priority);
-    uint8_t& next = next_transfer_id_[header.data_type_id];
+    uint8_t& next = next_transfer_id(header.data_type_id);
     header.transfer_id = next;
     frames_.clear();
     const CodecStatus status = append_message_frames(msg, header, payload_, frames_);
@@ -74,7 +75,7 @@ class DroneCanNode {
   template <DsdlCompound Msg>
   void subscribe(Handler<Msg> handler) {
     types_.add_message<Msg>();
-    handlers_[Msg::kType.default_dtid].push_back(
+    handlers_for(Msg::kType.default_dtid).push_back(
         [this, handler = std::move(handler)](const ReceivedTransfer& transfer) {
           Msg msg{};
           const CodecStatus status = decode_payload(transfer.payload, transfer.size, msg);
@@ -107,7 +108,10 @@ class DroneCanNode {
     config.node_id = node_id;
     return config;
   }
+  using TransferHandler = std::function<void(const ReceivedTransfer&)>;
   void on_frame(const CanFrame& frame, int64_t rx_time_us);
+  uint8_t& next_transfer_id(uint16_t data_type_id);
+  std::vector<TransferHandler>& handlers_for(uint16_t data_type_id);
   bool send_frames(std::string_view type_name);
   void publish_node_status();
   void warn_once(const std::string& key, const std::string& message);
@@ -116,8 +120,9 @@ class DroneCanNode {
   DroneCanNodeConfig config_;
   DataTypeTable types_;
   TransferReassembler reassembler_;
-  std::unordered_map<uint16_t, std::vector<std::function<void(const ReceivedTransfer&)>>> handlers_;
-  std::unordered_map<uint16_t, uint8_t> next_transfer_id_;
+  // Per data type ID, searched in place: a node has a handful, looked up for every transfer.
+  std::vector<std::pair<uint16_t, std::vector<TransferHandler>>> handlers_;
+  std::vector<std::pair<uint16_t, uint8_t>> next_transfer_id_;
   Payload payload_;
   std::vector<CanFrame> frames_;
   DroneCanNodeStats stats_;

@@ -41,6 +41,7 @@ TransferReassembler::TransferReassembler(const DataTypeTable& types, Reassembler
                                 std::to_string(config_.transfer_timeout_us));
   }
   sessions_.resize(config_.max_sessions);
+  session_tags_.assign(config_.max_sessions, 0);
 }
 
 FrameVerdict TransferReassembler::reject(FrameError error) {
@@ -50,19 +51,19 @@ FrameVerdict TransferReassembler::reject(FrameError error) {
 }
 
 TransferReassembler::Session* TransferReassembler::find_session(uint32_t key) {
-  for (Session& s : sessions_) {
-    if (s.active && s.key == key) return &s;
+  const uint64_t tag = kActiveTag | key;
+  for (std::size_t i = 0; i < session_tags_.size(); ++i) {
+    if (session_tags_[i] == tag) return &sessions_[i];
   }
   return nullptr;
 }
 
 TransferReassembler::Session* TransferReassembler::allocate_session(int64_t now_us) {
-  for (Session& s : sessions_) {
-    if (!s.active) return &s;
-  }
-  expire(now_us);
-  for (Session& s : sessions_) {
-    if (!s.active) return &s;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    if (attempt == 1) expire(now_us);
+    for (std::size_t i = 0; i < session_tags_.size(); ++i) {
+      if (session_tags_[i] == 0) return &sessions_[i];
+    }
   }
   return nullptr;
 }
@@ -138,6 +139,7 @@ FrameVerdict TransferReassembler::accept(const CanFrame& frame, int64_t rx_time_
     }
     session->active = true;
     session->key = key;
+    session_tags_[static_cast<std::size_t>(session - sessions_.data())] = kActiveTag | key;
     session->header = header;
     session->type = type;
     session->transfer_id = tail.transfer_id;

@@ -103,11 +103,18 @@ class TransferReassembler {
   FrameVerdict reject(FrameError error);
   Session* find_session(uint32_t key);
   Session* allocate_session(int64_t now_us);
-  void drop(Session& session) { session.active = false; }
+  void drop(Session& session) {
+    session.active = false;
+    session_tags_[static_cast<std::size_t>(&session - sessions_.data())] = 0;
+  }
+  // A session's tag: kActiveTag | key while active, 0 when free.
+  static constexpr uint64_t kActiveTag = uint64_t{1} << 32;
 
   const DataTypeTable& types_;
   ReassemblerConfig config_;
   std::vector<Session> sessions_;
+  // One tag per session, scanned instead of the sessions themselves (each ~300 bytes).
+  std::vector<uint64_t> session_tags_;
   ReassemblerStats stats_;
   FrameError last_error_ = FrameError::kCount;
   std::array<uint8_t, kMaxTransferPayloadBytes> completed_{};
