@@ -20,6 +20,9 @@ struct VirtualCanBus::Impl {
     return a.key != b.key ? a.key > b.key : a.seq > b.seq;
   }
   struct Port {
+    // The bus while it exists (its destructor clears this): a plain pointer, because send()
+    // runs for every frame and locking a weak_ptr costs two atomic operations.
+    Impl* bus = nullptr;
     std::string name;
     bool started = false;
     common::Executor* executor = nullptr;
@@ -60,6 +63,7 @@ struct VirtualCanBus::Impl {
   ~Impl() {
     if (arbitration_scheduled) executor.cancel(arbitration_timer);
     if (busy) executor.cancel(finish_timer);
+    for (Port* port : ports) port->bus = nullptr;
   }
 
   int64_t now_ns() const { return executor.clock().now_us() * 1000; }
@@ -159,12 +163,13 @@ namespace {
 
 class VirtualCanPort final : public CanBus {
  public:
-  VirtualCanPort(std::shared_ptr<VirtualCanBus::Impl> bus, const std::string& name) : bus_(bus) {
+  VirtualCanPort(VirtualCanBus::Impl& bus, const std::string& name) {
+    port_.bus = &bus;
     port_.name = name;
-    bus->ports.push_back(&port_);
+    bus.ports.push_back(&port_);
   }
   ~VirtualCanPort() override {
-    if (auto bus = bus_.lock()) {
+    if (VirtualCanBus::Impl* bus = port_.bus) {
       auto& ports = bus->ports;
       ports.erase(std::remove(ports.begin(), ports.end(), &port_), ports.end());
     }
@@ -172,12 +177,11 @@ class VirtualCanPort final : public CanBus {
 
   std::string name() const override { return "virtual:" + port_.name; }
   bool send(const CanFrame& frame) override {
-    auto bus = bus_.lock();
-    if (!bus) {
+    if (port_.bus == nullptr) {
       ++port_.stats.send_refused;
       return false;
     }
-    return bus->enqueue(port_, frame);
+    return port_.bus->enqueue(port_, frame);
   }
   void start(common::Executor& executor, CanFrameHandler handler) override {
     port_.executor = &executor;
@@ -189,7 +193,6 @@ class VirtualCanPort final : public CanBus {
   CanBusStats stats() const override { return port_.stats; }
 
  private:
-  std::weak_ptr<VirtualCanBus::Impl> bus_;
   VirtualCanBus::Impl::Port port_;
 };
 
@@ -207,7 +210,7 @@ VirtualCanBus::VirtualCanBus(common::Executor& executor, VirtualCanBusConfig con
 VirtualCanBus::~VirtualCanBus() = default;
 
 std::unique_ptr<CanBus> VirtualCanBus::attach(const std::string& port_name) {
-  return std::make_unique<VirtualCanPort>(impl_, port_name);
+  return std::make_unique<VirtualCanPort>(*impl_, port_name);
 }
 
 const VirtualCanBusConfig& VirtualCanBus::config() const { return impl_->config; }

@@ -203,6 +203,26 @@ TEST_F(VirtualBusTest, ABusDestroyedWithAFrameOnTheWireCancelsItsEvents) {
   EXPECT_EQ(sender->stats().send_refused, 1u);
 }
 
+TEST_F(VirtualBusTest, APortDestroyedBeforeTheBusLeavesIt) {
+  std::vector<Received> seen;
+  {
+    VirtualCanBus bus(scheduler_, {});
+    auto sender = bus.attach("sender");
+    auto gone = bus.attach("gone");
+    auto listener = bus.attach("listener");
+    std::vector<Received> never;
+    listen(*gone, never);
+    listen(*listener, seen);
+    gone.reset();
+    EXPECT_TRUE(sender->send(frame(0x10000001, 8)));
+    scheduler_.run_until(1'000);
+    EXPECT_EQ(seen.size(), 1u);
+    EXPECT_TRUE(never.empty());
+    sender.reset();  // the bus goes last, with one port left
+  }
+  EXPECT_EQ(scheduler_.pending(), 0u);
+}
+
 TEST_F(VirtualBusTest, DroneCanNodesExchangeMultiFrameTransfersInVirtualTime) {
   VirtualCanBus bus(scheduler_, {});
   auto imu_port = bus.attach("imu");
