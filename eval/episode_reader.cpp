@@ -81,10 +81,12 @@ EpisodeCheck EpisodeReader::check_file(const std::filesystem::path& path) {
     ::close(fd);
     return invalid("file-read", not_a_file_reason(info.st_mode));
   }
-  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
   // Regular files are read in one go; pipes (/dev/stdin, a FIFO) until their end (at once when
   // no one writes), within the limit.
   const bool regular = S_ISREG(info.st_mode);
+  // Only a pipe needs blocking reads back (regular files ignore O_NONBLOCK): two syscalls saved
+  // per episode file.
+  if (!regular) ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
   const auto size = static_cast<std::uintmax_t>(info.st_size);
   if (regular && size > max_file_bytes_) {
     ::close(fd);
