@@ -94,7 +94,7 @@ EpisodeCheck EpisodeReader::check_file(const std::filesystem::path& path) {
   }
   // One byte more than the text: the parser works in place and needs a terminating NUL.
   std::size_t capacity = regular ? static_cast<std::size_t>(size) : std::size_t{64} << 10;
-  buffer_.resize(capacity + 1);
+  resize_buffer(capacity);
   std::size_t got = 0;
   while (true) {
     if (got == capacity) {
@@ -104,7 +104,7 @@ EpisodeCheck EpisodeReader::check_file(const std::filesystem::path& path) {
         return too_big(got);
       }
       capacity *= 2;
-      buffer_.resize(capacity + 1);
+      resize_buffer(capacity);
     }
     const ssize_t n = ::read(fd, buffer_.data() + got, capacity - got);
     if (n < 0 && errno == EINTR) continue;
@@ -137,6 +137,10 @@ EpisodeCheck EpisodeReader::check_file(const std::filesystem::path& path) {
   });
 }
 
+void EpisodeReader::resize_buffer(std::size_t text_bytes) {
+  buffer_.resize(text_bytes + 1 + kRapidJsonPaddingBytes);
+}
+
 EpisodeCheck EpisodeReader::too_big(std::uintmax_t size) const {
   return invalid("file-size", "the file is " + std::to_string(size) +
                                   " bytes, more than the limit of " +
@@ -145,8 +149,8 @@ EpisodeCheck EpisodeReader::too_big(std::uintmax_t size) const {
 
 EpisodeCheck EpisodeReader::check_text(std::string_view text) {
   if (text.size() > max_file_bytes_) return too_big(text.size());
-  buffer_.assign(text);
-  buffer_.push_back('\0');
+  resize_buffer(text.size());
+  std::memcpy(buffer_.data(), text.data(), text.size());
   return check_buffer(text.size(), [text] { return std::string(text); });
 }
 

@@ -48,6 +48,8 @@ class EpisodeReader {
   // back when a syntax error has to be located (the parser rewrites the buffer).
   EpisodeCheck check_buffer(std::size_t size, const std::function<std::string()>& original_text);
   EpisodeCheck too_big(std::uintmax_t size) const;
+  // Room for text_bytes, the NUL the parser needs and the bytes its SIMD scan may read beyond.
+  void resize_buffer(std::size_t text_bytes);
 
   const JsonSchemaValidator& validator_;
   const ScoringProfile& profile_;

@@ -5,6 +5,8 @@
 // with a message, when the episodes are absent.
 #include <gtest/gtest.h>
 
+#include "eval/rapidjson.hpp"  // first: RapidJSON configured as everywhere in eval/
+
 #include <rapidjson/pointer.h>
 
 #include <cmath>
