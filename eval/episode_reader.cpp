@@ -168,11 +168,21 @@ EpisodeCheck EpisodeReader::check_buffer(std::size_t size,
   // parsing in place saves copying every string.
   pool_.Clear();
   rapidjson::Document document(&pool_);
-  // Iterative: a file of 100k '[' must not overflow the stack (depth is checked after parsing).
-  if (const auto parsed = parser_.parse_insitu(document, buffer_.data()); parsed.IsError()) {
-    // In-place parsing rewrote the buffer: count lines and columns on the original text.
+  if (!parser_.parse_insitu_shallow(document, buffer_.data())) {
+    // An error, or nesting too deep to parse recursively: again from the original text (in-place
+    // parsing rewrote the buffer), iteratively, so that a file of 100k '[' cannot overflow the
+    // stack (depth is checked after parsing) and errors are located as they always were.
     const std::string original = original_text();
-    return invalid("json-syntax", syntax_message(original, parsed.Offset(), parsed.Code()));
+    if (original.size() != size) {
+      return invalid("file-read", "cannot read: the file changed while reading");
+    }
+    std::memcpy(buffer_.data(), original.data(), size);
+    buffer_[size] = '\0';
+    pool_.Clear();
+    document.SetNull();
+    if (const auto parsed = parser_.parse_insitu(document, buffer_.data()); parsed.IsError()) {
+      return invalid("json-syntax", syntax_message(original, parsed.Offset(), parsed.Code()));
+    }
   }
   EpisodeCheck check;
   check.attempts_used = attempts_used_or_one(document);

@@ -10,8 +10,9 @@
 namespace a3::eval {
 namespace {
 
-constexpr unsigned kReaderFlags = rapidjson::kParseInsituFlag | rapidjson::kParseIterativeFlag |
-                                  rapidjson::kParseNumbersAsStringsFlag;
+constexpr unsigned kRecursiveReaderFlags =
+    rapidjson::kParseInsituFlag | rapidjson::kParseNumbersAsStringsFlag;
+constexpr unsigned kReaderFlags = kRecursiveReaderFlags | rapidjson::kParseIterativeFlag;
 
 bool is_integer_token(std::string_view token) {
   return token.find_first_of(".eE") == std::string_view::npos;
@@ -59,8 +60,10 @@ std::optional<JsonNumber> parse_integer(std::string_view token) {
 // Forwards SAX events to the document, converting number text itself.
 class ExactNumberHandler {
  public:
-  ExactNumberHandler(rapidjson::Document& document, const char* text)
-      : document_(document), text_(text) {}
+  // max_depth: nesting beyond it stops the parse (the recursive reader's stack is bounded).
+  ExactNumberHandler(rapidjson::Document& document, const char* text,
+                     int max_depth = std::numeric_limits<int>::max())
+      : document_(document), text_(text), max_depth_(max_depth) {}
 
   bool Null() { return document_.Null(); }
   bool Bool(bool b) { return document_.Bool(b); }
@@ -71,10 +74,16 @@ class ExactNumberHandler {
   bool Double(double d) { return document_.Double(d); }
   bool String(const char* s, rapidjson::SizeType n, bool copy) { return document_.String(s, n, copy); }
   bool Key(const char* s, rapidjson::SizeType n, bool copy) { return document_.Key(s, n, copy); }
-  bool StartObject() { return document_.StartObject(); }
-  bool EndObject(rapidjson::SizeType n) { return document_.EndObject(n); }
-  bool StartArray() { return document_.StartArray(); }
-  bool EndArray(rapidjson::SizeType n) { return document_.EndArray(n); }
+  bool StartObject() { return ++depth_ <= max_depth_ && document_.StartObject(); }
+  bool EndObject(rapidjson::SizeType n) {
+    --depth_;
+    return document_.EndObject(n);
+  }
+  bool StartArray() { return ++depth_ <= max_depth_ && document_.StartArray(); }
+  bool EndArray(rapidjson::SizeType n) {
+    --depth_;
+    return document_.EndArray(n);
+  }
 
   bool RawNumber(const char* s, rapidjson::SizeType n, bool) {
     const auto number = parse_json_number(std::string_view(s, n));
@@ -97,6 +106,8 @@ class ExactNumberHandler {
  private:
   rapidjson::Document& document_;
   const char* text_;
+  int max_depth_;
+  int depth_ = 0;
   std::optional<std::size_t> too_big_offset_;
 };
 
@@ -120,6 +131,18 @@ rapidjson::ParseResult ExactNumberParser::parse_insitu(rapidjson::Document& docu
   document.Populate(generate);
   if (too_big) result.Set(rapidjson::kParseErrorNumberTooBig, *too_big);
   return result;
+}
+
+bool ExactNumberParser::parse_insitu_shallow(rapidjson::Document& document, char* text) {
+  rapidjson::InsituStringStream stream(text);
+  bool parsed = false;
+  auto generate = [&](rapidjson::Document& target) {
+    ExactNumberHandler handler(target, text, kMaxRecursiveDepth);
+    parsed = !reader_.Parse<kRecursiveReaderFlags>(stream, handler).IsError();
+    return parsed;
+  };
+  document.Populate(generate);
+  return parsed;
 }
 
 }  // namespace a3::eval
