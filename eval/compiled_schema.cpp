@@ -29,8 +29,10 @@ bool type_matches(uint8_t mask, const rapidjson::Value& value) {
 // valijson looks a name up with the object's first member of that name.
 const rapidjson::Value* find_member(const rapidjson::Value& object, const std::string& name) {
   for (auto it = object.MemberBegin(); it != object.MemberEnd(); ++it) {
+    // Length and first byte settle most members without a memcmp.
     if (it->name.GetStringLength() == name.size() &&
-        std::memcmp(it->name.GetString(), name.data(), name.size()) == 0) {
+        (name.empty() || (it->name.GetString()[0] == name[0] &&
+                          std::memcmp(it->name.GetString(), name.data(), name.size()) == 0))) {
       return &it->value;
     }
   }

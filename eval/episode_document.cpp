@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <string_view>
 
@@ -11,10 +12,19 @@ namespace {
 
 using rapidjson::Value;
 
-const Value* member(const Value& object, const char* key) {
+// The first member named key (as RapidJSON's FindMember); length and first byte settle most
+// members without a memcmp, and the key's length is known at compile time.
+const Value* member(const Value& object, std::string_view key) {
   if (!object.IsObject()) return nullptr;
-  auto it = object.FindMember(key);
-  return it == object.MemberEnd() ? nullptr : &it->value;
+  for (auto it = object.MemberBegin(); it != object.MemberEnd(); ++it) {
+    const Value& name = it->name;
+    if (name.GetStringLength() == key.size() &&
+        (key.empty() || (name.GetString()[0] == key[0] &&
+                         std::memcmp(name.GetString(), key.data(), key.size()) == 0))) {
+      return &it->value;
+    }
+  }
+  return nullptr;
 }
 
 std::string_view string_of(const Value* v) {
