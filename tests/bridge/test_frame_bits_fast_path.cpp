@@ -1,7 +1,8 @@
 // The table-driven frame length (can_frame_bits) against the bit-by-bit reference
 // (can_frame_bits_reference): identical for random frames of every kind and length, for
 // frames built to stress stuffing, and for every frame of the DroneCAN test vectors; the
-// byte-wise CRC-15 against the bit-wise one for every bit count.
+// byte-wise CRC-15 against the bit-wise one for every bit count; frames whose headers repeat
+// (the cached state after a header).
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -59,6 +60,21 @@ TEST(FrameBitsFastPath, MatchesTheReferenceOnRandomFramesOfEveryKindAndLength) {
     }
   }
   EXPECT_EQ(compared, 2 * 9 * 4000);
+}
+
+// The state after a header is cached (64 entries): headers seen again, evicted, or sharing
+// a cache slot must give the same counts as fresh ones. IDs from small sets, so most repeat.
+TEST(FrameBitsFastPath, MatchesTheReferenceWhenHeadersRepeat) {
+  std::mt19937_64 rng(7);
+  for (uint32_t distinct_ids : {1u, 8u, 60u, 500u}) {
+    for (int i = 0; i < 20000; ++i) {
+      const bool extended = rng() % 4 != 0;
+      CanFrame frame = random_frame(rng, extended, static_cast<uint8_t>(rng() % 9));
+      const uint32_t id = static_cast<uint32_t>(rng() % distinct_ids);
+      frame.id = extended ? 0x1E04A300u + id : 0x400u + id % 0x400u;
+      expect_same_bits(frame);
+    }
+  }
 }
 
 TEST(FrameBitsFastPath, MatchesTheReferenceOnRunsOfEqualBits) {
