@@ -115,6 +115,34 @@ TEST(ExactNumbers, RandomDecimalsAgreeWithFullPrecisionRapidJson) {
   }
 }
 
+// Decimals of at most 15 digits without an exponent take a shortcut (one division): it must
+// give strtod's correctly rounded double, bit for bit, at every length and point position; 16
+// digits and more take the general path.
+TEST(ExactNumbers, ShortDecimalsAgreeWithStrtodBitForBit) {
+  for (const char* token : {"0.0", "-0.0", "0.1", "-0.35", "240.0", "0.000000000000001",
+                            "999999999999999.0", "99999999999999.9", "0.999999999999999",
+                            "9999999999999999.9", "0.30000000000000004", "1.000000000000000"}) {
+    expect_like_strtod(token);
+  }
+  std::mt19937_64 random(20261127);
+  std::uniform_int_distribution<int> digit(0, 9), length(1, 17);
+  for (int n = 0; n < 200000; ++n) {
+    const int digits = length(random);
+    std::uniform_int_distribution<int> point_at(1, digits);
+    const int point = point_at(random);
+    std::string token = (n % 2 == 0) ? "-" : "";
+    for (int i = 0; i < digits; ++i) {
+      // JSON allows one leading zero only: the integer part is "0" or starts with 1-9.
+      const bool leading = i == 0 && point > 1;
+      token += static_cast<char>(leading ? '1' + digit(random) % 9 : '0' + digit(random));
+      if (i + 1 == point && point < digits) token += '.';
+    }
+    if (token.find('.') == std::string::npos) token += ".5";
+    expect_like_strtod(token);
+    if (HasFailure()) return;
+  }
+}
+
 TEST(ExactNumbers, AZeroSignificandWithAnExponentIsZero) {
   for (const char* token : {"0E120", "0e-120", "0.000E120", "0.0e5", "0E400", "-0E120"}) {
     SCOPED_TRACE(token);
