@@ -89,13 +89,16 @@ bool CompiledSchema::valid_at(SchemaNodeIndex index, const rapidjson::Value& val
 }
 
 bool CompiledSchema::object_valid(const SchemaNode& node, const rapidjson::Value& object) const {
-  for (const std::string& name : node.required) {
+  for (const std::string& name : node.required_beyond_properties) {
     if (find_member(object, name) == nullptr) return false;
   }
   rapidjson::SizeType matched = 0;
   for (const NamedSchema& property : node.properties) {
     const rapidjson::Value* member = find_member(object, property.name);
-    if (member == nullptr) continue;
+    if (member == nullptr) {
+      if (property.required) return false;
+      continue;
+    }
     ++matched;
     if (!valid_at(property.schema, *member)) return false;
   }

@@ -2,6 +2,7 @@
 // form whose valijson meaning the checks in compiled_schema.cpp do not reproduce.
 #include "eval/compiled_schema.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <map>
 #include <set>
@@ -36,6 +37,7 @@ class SchemaCompiler {
   std::string read_name(const rapidjson::Value& value, const std::string& pointer) const;
   std::vector<std::string> read_required(const rapidjson::Value& value, const std::string& pointer) const;
   std::vector<NamedSchema> read_properties(const rapidjson::Value& value, const std::string& pointer);
+  static void mark_required_properties(SchemaNode& node);
   void read_additional(SchemaNode& node, const rapidjson::Value& value, const std::string& pointer);
   uint64_t read_count(const rapidjson::Value& value, const std::string& pointer) const;
   double read_number(const rapidjson::Value& value, const std::string& pointer) const;
@@ -158,7 +160,21 @@ SchemaNode SchemaCompiler::compile_keywords(const rapidjson::Value& schema, cons
     if (!seen.insert(keyword).second) refuse(child(pointer, keyword), "keyword written twice");
     read_keyword(node, schema, keyword, it->value, child(pointer, keyword));
   }
+  mark_required_properties(node);
   return node;
+}
+
+// A required name with a property schema is found once, when its schema is checked.
+void SchemaCompiler::mark_required_properties(SchemaNode& node) {
+  for (const std::string& name : node.required) {
+    auto property = std::find_if(node.properties.begin(), node.properties.end(),
+                                 [&](const NamedSchema& p) { return p.name == name; });
+    if (property != node.properties.end()) {
+      property->required = true;
+    } else {
+      node.required_beyond_properties.push_back(name);
+    }
+  }
 }
 
 void SchemaCompiler::read_keyword(SchemaNode& node, const rapidjson::Value& schema, const std::string& keyword,

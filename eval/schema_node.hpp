@@ -29,6 +29,7 @@ enum JsonTypeBit : uint8_t {
 struct NamedSchema {
   std::string name;  // never holds a NUL (refused when compiling)
   SchemaNodeIndex schema = kNoSchemaNode;
+  bool required = false;  // also in the node's `required`: checked when looked up for its schema
 };
 
 // additionalProperties: absent or true (anything), false (nothing beyond `properties`), a schema.
@@ -38,6 +39,7 @@ struct SchemaNode {
   enum class Kind : uint8_t { kAlwaysValid, kAlwaysInvalid, kKeywords } kind = Kind::kKeywords;
   std::optional<uint8_t> type_mask;                    // type
   std::vector<std::string> required;                   // required
+  std::vector<std::string> required_beyond_properties; // required names without a property schema
   std::vector<NamedSchema> properties;                 // properties
   AdditionalProperties additional = AdditionalProperties::kAny;
   SchemaNodeIndex additional_schema = kNoSchemaNode;   // additionalProperties when a schema
