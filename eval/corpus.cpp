@@ -94,8 +94,10 @@ void CorpusWalker::push_directory(const fs::path& dir) {
     }
     frame.entries.push_back(*it);
   }
+  // Entries of one folder differ only in their names (no '/'), so comparing the whole text is
+  // path order, without path::compare splitting both into components each time.
   std::sort(frame.entries.begin(), frame.entries.end(),
-            [](const auto& a, const auto& b) { return a.path() < b.path(); });
+            [](const auto& a, const auto& b) { return a.path().native() < b.path().native(); });
   EpisodeFile probe{dir / "probe", {}, {}, std::nullopt};
   attribute_model(probe, options_);
   frame.model = std::move(probe.model);
