@@ -4,6 +4,7 @@
 #include "common/json_pointer.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <string>
 
 namespace a3::eval {
@@ -69,12 +70,26 @@ void JsonShapeChecker::check_keys(const rapidjson::Value& object, Violations& ou
   const auto same = [](std::string_view a, std::string_view b) {
     return a.size() == b.size() && (a.empty() || (a[0] == b[0] && a == b));
   };
+  // A key can only repeat an earlier one with the same length and first and last bytes: a
+  // 64-bit mask of those seen lets almost every key skip the comparisons.
+  const auto bit_of = [](std::string_view key) {
+    const unsigned mix = key.empty() ? 0u
+                                     : static_cast<unsigned>(key.size()) * 7u +
+                                           static_cast<unsigned char>(key.front()) * 3u +
+                                           static_cast<unsigned char>(key.back());
+    return uint64_t{1} << (mix & 63u);
+  };
+  uint64_t seen = bit_of(keys_[0]);
   for (std::size_t i = 1; i < keys_.size(); ++i) {
+    const uint64_t bit = bit_of(keys_[i]);
+    const bool maybe_repeated = (seen & bit) != 0;
+    seen |= bit;
+    if (!maybe_repeated) continue;
     for (std::size_t j = 0; j < i; ++j) {
       if (!same(keys_[i], keys_[j])) continue;
-      // Report each key once: at its second occurrence.
+      // Report each key once: at its second occurrence (j is the first; none between j and i).
       bool earlier = false;
-      for (std::size_t k = 0; k < j && !earlier; ++k) earlier = same(keys_[k], keys_[i]);
+      for (std::size_t k = j + 1; k < i && !earlier; ++k) earlier = same(keys_[k], keys_[i]);
       if (!earlier) report(keys_[i]);
       break;
     }

@@ -126,6 +126,22 @@ TEST_F(EpisodeJsonShapeTest, KeysNeedingEscapesInThePointerAreEscaped) {
   EXPECT_EQ(v[0].json_path, "/a~1b/1/m~0n");
 }
 
+// A small object (compared pair by pair, after a mask of length and end bytes): each repeated
+// key once, in the order of second occurrences, and keys alike in length and ends are not
+// mistaken for each other.
+TEST_F(EpisodeJsonShapeTest, EachRepeatedKeyOfASmallObjectIsReportedOnce) {
+  JsonShapeChecker checker;
+  rapidjson::Document d;
+  Violations v;
+  d.Parse(R"({"o": {"kk": 1, "jx": 2, "kk": 3, "kk": 4, "jx": 5, "kak": 6, "kbk": 7, "": 8, "": 9}})");
+  EXPECT_TRUE(checker.check(d, v));
+  ASSERT_EQ(v.size(), 3u);
+  EXPECT_NE(v[0].message.find("duplicate key \"kk\""), std::string::npos) << v[0].message;
+  EXPECT_NE(v[1].message.find("duplicate key \"jx\""), std::string::npos) << v[1].message;
+  EXPECT_NE(v[2].message.find("duplicate key \"\""), std::string::npos) << v[2].message;
+  EXPECT_EQ(v[0].json_path, "/o");
+}
+
 TEST_F(EpisodeJsonShapeTest, TheSameKeyInSiblingObjectsIsFine) {
   const EpisodeCheck c = check(a3::test::make_episode().dump());
   EXPECT_EQ(c.status, EpisodeStatus::kValid) << all(c);
