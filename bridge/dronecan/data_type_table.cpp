@@ -15,7 +15,8 @@ void DataTypeTable::add(std::string full_name, TransferKind kind, uint16_t data_
                                 std::to_string(max_payload_bytes) + " bytes exceeds " +
                                 std::to_string(kMaxTransferPayloadBytes));
   }
-  const auto [it, inserted] = entries_.try_emplace(key(kind, data_type_id));
+  const uint32_t k = key(kind, data_type_id);
+  const auto [it, inserted] = entries_.try_emplace(k);
   if (!inserted) {
     if (it->second.full_name == full_name && it->second.signature == signature) return;
     throw std::invalid_argument("data type ID " + std::to_string(data_type_id) + " is " +
@@ -24,16 +25,18 @@ void DataTypeTable::add(std::string full_name, TransferKind kind, uint16_t data_
   it->second = Entry{std::move(full_name), kind,
                      data_type_id,        signature,
                      transfer_crc_seed(signature), max_payload_bytes};
-  const uint32_t k = key(kind, data_type_id);
-  index_.insert(std::lower_bound(index_.begin(), index_.end(), k,
-                                 [](const auto& item, uint32_t value) { return item.first < value; }),
-                {k, &it->second});
+  index_.insert(index_position(k), {k, &it->second});
+}
+
+std::vector<std::pair<uint32_t, const DataTypeTable::Entry*>>::const_iterator DataTypeTable::index_position(
+    uint32_t k) const {
+  return std::lower_bound(index_.begin(), index_.end(), k,
+                          [](const auto& item, uint32_t value) { return item.first < value; });
 }
 
 const DataTypeTable::Entry* DataTypeTable::find(TransferKind kind, uint16_t data_type_id) const {
   const uint32_t k = key(kind, data_type_id);
-  const auto it = std::lower_bound(index_.begin(), index_.end(), k,
-                                   [](const auto& item, uint32_t value) { return item.first < value; });
+  const auto it = index_position(k);
   return it != index_.end() && it->first == k ? it->second : nullptr;
 }
 

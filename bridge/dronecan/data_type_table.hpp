@@ -43,6 +43,8 @@ class DataTypeTable {
   static uint32_t key(TransferKind kind, uint16_t data_type_id) {
     return (static_cast<uint32_t>(kind) << 16) | data_type_id;
   }
+  // The first index_ item whose key is not less than k.
+  std::vector<std::pair<uint32_t, const Entry*>>::const_iterator index_position(uint32_t k) const;
   std::unordered_map<uint32_t, Entry> entries_;  // stable addresses for find()'s pointers
   // (key, entry) sorted by key: find() runs for every received frame, a hash lookup costs more.
   std::vector<std::pair<uint32_t, const Entry*>> index_;
