@@ -7,6 +7,38 @@
 #include <cmath>
 
 namespace a3::dynamics {
+namespace {
+
+// wrench(), in a function of this file so that derivatives() inlines it (the library is built
+// position-independent: a public member function could be interposed, so it is not inlined).
+Wrench wrench_of(const QuadrotorModel& model, const VehicleState& s, const Eigen::Vector3d& wind_W_mps) {
+  const VehicleParams& params = model.params();
+  const std::array<Eigen::Vector3d, 4>& rotor_p_B = model.rotor_positions_B_m();
+  const Eigen::Quaterniond q = s.q_WB.normalized();
+  Wrench out;
+  double thrust_N = 0.0;
+  double yaw_torque_Nm = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    const double w2 = s.rotor_speed_radps[i] * s.rotor_speed_radps[i];
+    const double t = params.rotor.thrust_coeff_N_per_radps2 * w2;
+    thrust_N += t;
+    // r × (0, 0, T) = (r_y T, -r_x T, 0)
+    out.torque_B_Nm.x() += rotor_p_B[i].y() * t;
+    out.torque_B_Nm.y() -= rotor_p_B[i].x() * t;
+    // A rotor spinning CCW (+z) is dragged CW by the air; the motor pushes the body CW too.
+    yaw_torque_Nm -= QuadrotorModel::kSpin[i] * params.rotor.drag_torque_coeff_Nm_per_radps2 * w2;
+  }
+  out.torque_B_Nm.z() += yaw_torque_Nm;
+  out.torque_B_Nm -= params.aero.angular_drag_Nms_per_rad * s.w_B_radps;
+
+  const Eigen::Vector3d v_air = s.v_W_mps - wind_W_mps;
+  const double quadratic = 0.5 * kAirDensity_kgpm3 * params.aero.drag_cdA_m2 * v_air.norm();
+  out.force_W_N = q * Eigen::Vector3d(0, 0, thrust_N) - params.aero.linear_drag_Ns_per_m * v_air -
+                  quadratic * v_air + Eigen::Vector3d(0, 0, -model.mass_kg() * kGravity_mps2);
+  return out;
+}
+
+}  // namespace
 
 QuadrotorModel::QuadrotorModel(VehicleParams params)
     : params_(std::move(params)),
@@ -19,51 +51,15 @@ QuadrotorModel::QuadrotorModel(VehicleParams params)
   induced_power_factor_ = 1.0 / (params_.rotor.figure_of_merit * std::sqrt(2.0 * kAirDensity_kgpm3 * disk_area_m2));
 }
 
-double QuadrotorModel::rotor_thrust_N(double speed_radps) const {
-  return params_.rotor.thrust_coeff_N_per_radps2 * speed_radps * speed_radps;
-}
-
-double QuadrotorModel::total_thrust_N(const RotorSpeeds& speeds) const {
-  double t = 0.0;
-  for (double w : speeds) t += rotor_thrust_N(w);
-  return t;
-}
-
 Wrench QuadrotorModel::wrench(const VehicleState& s, const Eigen::Vector3d& wind_W_mps) const {
-  const Eigen::Quaterniond q = s.q_WB.normalized();
-  Wrench out;
-  double thrust_N = 0.0;
-  double yaw_torque_Nm = 0.0;
-  for (int i = 0; i < 4; ++i) {
-    const double w2 = s.rotor_speed_radps[i] * s.rotor_speed_radps[i];
-    const double t = params_.rotor.thrust_coeff_N_per_radps2 * w2;
-    thrust_N += t;
-    // r × (0, 0, T) = (r_y T, -r_x T, 0)
-    out.torque_B_Nm.x() += rotor_p_B_[i].y() * t;
-    out.torque_B_Nm.y() -= rotor_p_B_[i].x() * t;
-    // A rotor spinning CCW (+z) is dragged CW by the air; the motor pushes the body CW too.
-    yaw_torque_Nm -= kSpin[i] * params_.rotor.drag_torque_coeff_Nm_per_radps2 * w2;
-  }
-  out.torque_B_Nm.z() += yaw_torque_Nm;
-  out.torque_B_Nm -= params_.aero.angular_drag_Nms_per_rad * s.w_B_radps;
-
-  const Eigen::Vector3d v_air = s.v_W_mps - wind_W_mps;
-  const double quadratic = 0.5 * kAirDensity_kgpm3 * params_.aero.drag_cdA_m2 * v_air.norm();
-  out.force_W_N = q * Eigen::Vector3d(0, 0, thrust_N) - params_.aero.linear_drag_Ns_per_m * v_air -
-                  quadratic * v_air + Eigen::Vector3d(0, 0, -mass_kg_ * kGravity_mps2);
-  return out;
+  return wrench_of(*this, s, wind_W_mps);
 }
 
 Eigen::Vector3d QuadrotorModel::specific_force_B_mps2(const VehicleState& s,
                                                       const Eigen::Vector3d& wind_W_mps) const {
-  const Wrench w = wrench(s, wind_W_mps);
+  const Wrench w = wrench_of(*this, s, wind_W_mps);
   const Eigen::Vector3d non_gravity_W = w.force_W_N + Eigen::Vector3d(0, 0, mass_kg_ * kGravity_mps2);
   return s.q_WB.normalized().conjugate() * (non_gravity_W / mass_kg_);
-}
-
-double QuadrotorModel::rotor_acceleration_radps2(double speed, double command) const {
-  const double tau = command >= speed ? params_.rotor.time_constant_up_s : params_.rotor.time_constant_down_s;
-  return (command - speed) / tau;
 }
 
 double QuadrotorModel::rotor_speed_after(double speed, double command, double dt_s) const {
@@ -71,37 +67,22 @@ double QuadrotorModel::rotor_speed_after(double speed, double command, double dt
   return command + (speed - command) * std::exp(-dt_s / tau);
 }
 
-double QuadrotorModel::electrical_power_W(const RotorSpeeds& speeds) const {
-  double rotor_W = 0.0;
-  for (double w : speeds) {
-    const double t = rotor_thrust_N(w);
-    rotor_W += t * std::sqrt(t) * induced_power_factor_;
-  }
-  return rotor_W / params_.battery.powertrain_efficiency + params_.battery.avionics_power_W +
-         params_.payload_power_W;
-}
-
-double QuadrotorModel::battery_energy_J() const {
-  return params_.battery.capacity_Ah * 3600.0 * params_.battery.cells * params_.battery.cell_nominal_V;
-}
-
 void QuadrotorModel::derivatives(const double* y, const RotorSpeeds& command,
                                  const Eigen::Vector3d& wind_W_mps, bool on_ground,
                                  double* dydt) const {
-  const VehicleState s = unpack_state(y);
-  RotorSpeeds speeds;
+  // The rotor speeds are clamped at 0 in place, after their lag used the raw values: the
+  // state is copied once per evaluation.
+  VehicleState s = unpack_state(y);
   for (int i = 0; i < 4; ++i) {
-    speeds[i] = std::max(0.0, s.rotor_speed_radps[i]);
     dydt[index::kRotor + i] = rotor_acceleration_radps2(s.rotor_speed_radps[i], command[i]);
+    s.rotor_speed_radps[i] = std::max(0.0, s.rotor_speed_radps[i]);
   }
-  dydt[index::kEnergy] = electrical_power_W(speeds);
+  dydt[index::kEnergy] = electrical_power_W(s.rotor_speed_radps);
   if (on_ground) {
     for (int i = 0; i < index::kRotor; ++i) dydt[i] = 0.0;
     return;
   }
-  VehicleState clean = s;
-  clean.rotor_speed_radps = speeds;
-  const Wrench w = wrench(clean, wind_W_mps);
+  const Wrench w = wrench_of(*this, s, wind_W_mps);
   const Eigen::Vector3d a_W = w.force_W_N / mass_kg_;
   const Eigen::Vector3d& om = s.w_B_radps;
   const Eigen::Vector3d Iw = inertia_kgm2_.cwiseProduct(om);
@@ -120,10 +101,6 @@ void QuadrotorModel::derivatives(const double* y, const RotorSpeeds& command,
     dydt[index::kV + i] = a_W[i];
     dydt[index::kW + i] = dw[i];
   }
-}
-
-double QuadrotorModel::throttle_to_speed_radps(double throttle) const {
-  return std::clamp(throttle, 0.0, 1.0) * params_.rotor.max_speed_radps;
 }
 
 double QuadrotorModel::hover_speed_radps() const {

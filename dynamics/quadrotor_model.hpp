@@ -7,7 +7,9 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "dynamics/vehicle_params.hpp"
 #include "dynamics/vehicle_state.hpp"
@@ -33,21 +35,42 @@ class QuadrotorModel {
   const std::array<Eigen::Vector3d, 4>& rotor_positions_B_m() const { return rotor_p_B_; }
   static constexpr std::array<double, 4> kSpin = {+1.0, +1.0, -1.0, -1.0};
 
-  double rotor_thrust_N(double speed_radps) const;
-  double total_thrust_N(const RotorSpeeds& speeds) const;
+  // The small functions below are inline: the right-hand side calls them in every evaluation.
+  double rotor_thrust_N(double speed_radps) const {
+    return params_.rotor.thrust_coeff_N_per_radps2 * speed_radps * speed_radps;
+  }
+  double total_thrust_N(const RotorSpeeds& speeds) const {
+    double t = 0.0;
+    for (double w : speeds) t += rotor_thrust_N(w);
+    return t;
+  }
   Wrench wrench(const VehicleState& s, const Eigen::Vector3d& wind_W_mps) const;
   // What an accelerometer at the centre of mass reads (specific force, body frame).
   Eigen::Vector3d specific_force_B_mps2(const VehicleState& s, const Eigen::Vector3d& wind_W_mps) const;
 
   // Motor lag: dω/dt toward the command, faster up than down.
-  double rotor_acceleration_radps2(double speed_radps, double command_radps) const;
+  double rotor_acceleration_radps2(double speed_radps, double command_radps) const {
+    const double tau =
+        command_radps >= speed_radps ? params_.rotor.time_constant_up_s : params_.rotor.time_constant_down_s;
+    return (command_radps - speed_radps) / tau;
+  }
   // ω(t + dt) for a command held over dt (exact solution of the lag).
   double rotor_speed_after(double speed_radps, double command_radps, double dt_s) const;
 
   // Electrical power: rotor induced power T^1.5 / (FM √(2ρA)) over the powertrain efficiency,
   // plus avionics and payloads.
-  double electrical_power_W(const RotorSpeeds& speeds) const;
-  double battery_energy_J() const;
+  double electrical_power_W(const RotorSpeeds& speeds) const {
+    double rotor_W = 0.0;
+    for (double w : speeds) {
+      const double t = rotor_thrust_N(w);
+      rotor_W += t * std::sqrt(t) * induced_power_factor_;
+    }
+    return rotor_W / params_.battery.powertrain_efficiency + params_.battery.avionics_power_W +
+           params_.payload_power_W;
+  }
+  double battery_energy_J() const {
+    return params_.battery.capacity_Ah * 3600.0 * params_.battery.cells * params_.battery.cell_nominal_V;
+  }
 
   // d/dt of the packed state (vehicle_state.hpp). On the ground the body does not move (only
   // rotors and energy evolve).
@@ -55,7 +78,9 @@ class QuadrotorModel {
                    const Eigen::Vector3d& wind_W_mps, bool on_ground, double* dydt) const;
 
   // Throttle (0..1, as an ESC takes it) to rotor speed command: ω = throttle · ω_max.
-  double throttle_to_speed_radps(double throttle) const;
+  double throttle_to_speed_radps(double throttle) const {
+    return std::clamp(throttle, 0.0, 1.0) * params_.rotor.max_speed_radps;
+  }
   // The rotor speed, and the throttle, at which the four rotors carry the vehicle's weight.
   double hover_speed_radps() const;
   double hover_throttle() const;

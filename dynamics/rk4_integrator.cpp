@@ -81,12 +81,9 @@ void Rk4Integrator::step_to(double t_next_s) {
   }
 }
 
-const Eigen::Vector3d& Rk4Integrator::wind_at(double t_s) {
-  if (t_s != wind_time_s_) {
-    wind_W_mps_ = wind_.wind_W_mps(t_s);
-    wind_time_s_ = t_s;
-  }
-  return wind_W_mps_;
+void Rk4Integrator::sample_wind(double t_s) {
+  wind_W_mps_ = wind_.wind_W_mps(t_s);
+  wind_time_s_ = t_s;
 }
 
 void Rk4Integrator::rk4_step(const State& y0, double t0_s, double h_s, State& y1) {

@@ -51,7 +51,12 @@ class Rk4Integrator final : public Integrator {
   void integrate(double t_end_s, const RotorSpeeds& command_radps) override;
   void step_to(double t_next_s);
   void rk4_step(const State& y0, double t0_s, double h_s, State& y1);
-  const Eigen::Vector3d& wind_at(double t_s);
+  // Inline: three calls per step, mostly for a time already sampled.
+  const Eigen::Vector3d& wind_at(double t_s) {
+    if (t_s != wind_time_s_) sample_wind(t_s);
+    return wind_W_mps_;
+  }
+  void sample_wind(double t_s);
 
   // Event functions: > 0 before, <= 0 at and after the event (whichever applies now).
   double contact_function(const State& y) const;

@@ -8,6 +8,7 @@
 
 #include "common/json_file.hpp"
 #include "dynamics/battery.hpp"
+#include "dynamics/quadrotor_model.hpp"
 #include "dynamics/scenario_setup.hpp"
 #include "dynamics/wind_field.hpp"
 #include "tests/test_support.hpp"
@@ -196,6 +197,43 @@ TEST(ScenarioSetup, AFlightStartSetsWindPayloadsPoseAndBattery) {
   FlightStart storm = start;
   storm.wind_mps = std::numeric_limits<double>::infinity();
   EXPECT_THROW(apply_flight_start(storm, true, config), std::invalid_argument);
+}
+
+// derivatives() inlines its parts (one state copy, the rotor speeds clamped in place): each
+// component must stay bit for bit what the public parts give, the lag seeing the raw rotor speed.
+TEST(QuadrotorModel, DerivativesAreThePublicPartsBitForBit) {
+  const QuadrotorModel model(default_vehicle_params());
+  VehicleState s;
+  s.p_W_m = {1.0, -2.0, 30.0};
+  s.v_W_mps = {3.0, -1.0, 0.5};
+  s.q_WB = Eigen::Quaterniond(0.9, 0.1, -0.2, 0.3);  // not unit: the model normalises
+  s.w_B_radps = {0.3, -0.2, 0.1};
+  s.rotor_speed_radps = {400.0, -5.0, 650.0, 0.0};  // a negative speed is clamped to 0
+  s.energy_used_J = 1000.0;
+  const RotorSpeeds command = {500.0, 100.0, 600.0, 0.0};
+  const Eigen::Vector3d wind(2.0, -1.0, 0.5);
+  double y[kStateSize], dydt[kStateSize];
+  pack_state(s, y);
+  model.derivatives(y, command, wind, false, dydt);
+
+  VehicleState clean = s;
+  for (double& w : clean.rotor_speed_radps) w = std::max(0.0, w);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_EQ(dydt[index::kRotor + i], model.rotor_acceleration_radps2(s.rotor_speed_radps[i], command[i])) << i;
+  }
+  EXPECT_NE(dydt[index::kRotor + 1], model.rotor_acceleration_radps2(0.0, command[1]));
+  EXPECT_EQ(dydt[index::kEnergy], model.electrical_power_W(clean.rotor_speed_radps));
+  const Wrench wrench = model.wrench(clean, wind);
+  const Eigen::Vector3d a_W = wrench.force_W_N / model.mass_kg();
+  const VehicleParams& p = model.params();
+  const Eigen::Vector3d inertia(p.inertia_xx_kgm2, p.inertia_yy_kgm2, p.inertia_zz_kgm2);
+  const Eigen::Vector3d& om = s.w_B_radps;
+  const Eigen::Vector3d dw = (wrench.torque_B_Nm - om.cross(inertia.cwiseProduct(om))).cwiseQuotient(inertia);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(dydt[index::kP + i], s.v_W_mps[i]) << i;
+    EXPECT_EQ(dydt[index::kV + i], a_W[i]) << i;
+    EXPECT_EQ(dydt[index::kW + i], dw[i]) << i;
+  }
 }
 
 }  // namespace
