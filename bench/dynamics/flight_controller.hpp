@@ -140,6 +140,19 @@ inline ControllerInput input_of(const dynamics::VehicleState& s, bool on_ground)
   return {s.p_W_m, s.v_W_mps, s.w_B_radps, s.q_WB, on_ground};
 }
 
+// Entry (i, j) of ½ (Aᵀ B − Bᵀ A), each product's entry summed in Eigen's order (k = 0, 1, 2).
+inline double skew_product_entry(const Eigen::Matrix3d& A, const Eigen::Matrix3d& B, int i, int j) {
+  const double atb = A(0, i) * B(0, j) + A(1, i) * B(1, j) + A(2, i) * B(2, j);
+  const double bta = B(0, i) * A(0, j) + B(1, i) * A(1, j) + B(2, i) * A(2, j);
+  return 0.5 * (atb - bta);
+}
+
+// Lee's attitude error e_R = vee(½ (R_desᵀ R − Rᵀ R_des)) from the three entries it uses, without
+// the two full 3x3 products: bit for bit their result (tests/dynamics/test_integrators.cpp).
+inline Eigen::Vector3d attitude_error(const Eigen::Matrix3d& R_des, const Eigen::Matrix3d& R) {
+  return {skew_product_entry(R_des, R, 2, 1), skew_product_entry(R_des, R, 0, 2), skew_product_entry(R_des, R, 1, 0)};
+}
+
 class FlightController {
  public:
   FlightController(const dynamics::VehicleParams& params, FlightPlan plan, double period_s = 0.01)
@@ -186,8 +199,7 @@ class FlightController {
     R_des.col(1) = b2;
     R_des.col(2) = b3;
     const double thrust_N = std::max(0.0, force_W.dot(R.col(2)));
-    const Eigen::Matrix3d E = 0.5 * (R_des.transpose() * R - R.transpose() * R_des);
-    const Eigen::Vector3d e_R(E(2, 1), E(0, 2), E(1, 0));
+    const Eigen::Vector3d e_R = attitude_error(R_des, R);
     const Eigen::Vector3d& w = s.w_B_radps;
     const Eigen::Vector3d torque = -kKr.cwiseProduct(inertia_).cwiseProduct(e_R) -
                                    kKw.cwiseProduct(inertia_).cwiseProduct(w) +

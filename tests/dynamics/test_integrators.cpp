@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <random>
 
 #include "bench/dynamics/flight_controller.hpp"
 #include "dynamics/integrator.hpp"
@@ -149,6 +150,26 @@ TEST(IntegratorAgreement, CvodeAndRk4AgreeAfterSixtySecondsOfThePatrolFlight) {
 
 TEST(IntegratorAgreement, CvodeAndRk4AgreeAfterSixtySecondsOfThePatrolFlightInTurbulence) {
   expect_patrol_agrees_with_cvode(IntegratorKind::kRk4, true);
+}
+
+// The benchmark controller computes only the three entries of its attitude error it uses; they
+// must be bit for bit those of the two full 3x3 products, or its commands (and every benchmark
+// trajectory) would change.
+TEST(FlightController, AttitudeErrorIsBitForBitTheFullProducts) {
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> normal;
+  const auto random_rotation = [&] {
+    return Eigen::Quaterniond(normal(rng), normal(rng), normal(rng), normal(rng)).normalized().toRotationMatrix();
+  };
+  for (int k = 0; k < 1000; ++k) {
+    const Eigen::Matrix3d R_des = random_rotation();
+    const Eigen::Matrix3d R = random_rotation();
+    const Eigen::Matrix3d E = 0.5 * (R_des.transpose() * R - R.transpose() * R_des);
+    const Eigen::Vector3d e_R = bench::attitude_error(R_des, R);
+    ASSERT_EQ(e_R.x(), E(2, 1)) << k;
+    ASSERT_EQ(e_R.y(), E(0, 2)) << k;
+    ASSERT_EQ(e_R.z(), E(1, 0)) << k;
+  }
 }
 
 TEST(IntegratorAgreement, Rk4LandsExactlyOnTheRequestedTimes) {
