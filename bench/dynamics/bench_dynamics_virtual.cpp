@@ -95,7 +95,11 @@ dynamics::DynamicsNodeConfig config_for(const Variant& v, double rtol) {
   return config;
 }
 
-// The dynamics node and the script node on the virtual runtime, for sim_s simulated seconds.
+// The dynamics node and the controller (or script) node on the virtual runtime, for sim_s
+// simulated seconds. Each message has one subscriber, its consumer, as in an episode without
+// a logger: the controller takes A3_STATE (and reports the last state it heard), the dynamics
+// A3_ACTUATORS; with the script node, which does not listen, a recorder takes A3_STATE. `keep`
+// (the CSV) adds a recorder of every message.
 Result run_node(const Variant& v, double sim_s, double rtol, BusRecorder* keep) {
   const dynamics::DynamicsNodeConfig config = config_for(v, rtol);
   const dynamics::QuadrotorModel model(config.params);
@@ -106,8 +110,8 @@ Result run_node(const Variant& v, double sim_s, double rtol, BusRecorder* keep) 
       [hover](double) { return std::array<double, 4>{hover, hover, hover, hover}; }});
   FlightControllerNode controller(config.params, patrol_plan(sim_s));
   BusRecorder last_only(false);
-  BusRecorder& recorder = keep != nullptr ? *keep : last_only;
-  rt.add(recorder);
+  if (keep != nullptr) rt.add(*keep);
+  if (v.hover_script && keep == nullptr) rt.add(last_only);
   rt.add(dyn);
   if (v.hover_script) {
     rt.add(script);
@@ -119,8 +123,14 @@ Result run_node(const Variant& v, double sim_s, double rtol, BusRecorder* keep) 
   Result r;
   r.wall_s = now_s() - t0;
   r.cpu_s = cpu_now_s() - c0;
-  r.last = recorder.last_state();
-  r.states = recorder.state_count();
+  if (keep != nullptr || v.hover_script) {
+    const BusRecorder& recorder = keep != nullptr ? *keep : last_only;
+    r.last = recorder.last_state();
+    r.states = recorder.state_count();
+  } else {
+    r.last = controller.last_state();
+    r.states = controller.states_received();
+  }
   r.stats = stats_of(dyn.integrator());
   return r;
 }
@@ -207,6 +217,7 @@ int main(int argc, char** argv) {
   std::string only;
   std::string csv;
   double csv_s = 60.0;
+  int digits = 4;
   app.add_option("--sim-s", sim_s, "simulated seconds per run (default 600)")->check(CLI::PositiveNumber);
   app.add_option("--repeats", repeats, "runs per variant; the median is printed (default 3)")->check(CLI::Range(1, 100));
   app.add_option("--rtol", rtol, "CVODE relative tolerance (default: the node's)")->check(CLI::PositiveNumber);
@@ -214,6 +225,8 @@ int main(int argc, char** argv) {
   app.add_option("--csv", csv,
                  "also write the flight of the first variant run (bus commands and states) to this CSV");
   app.add_option("--csv-s", csv_s, "simulated seconds in the CSV (default 60)")->check(CLI::PositiveNumber);
+  app.add_option("--digits", digits, "decimals of the final positions (default 4; 17 to compare builds bit for bit)")
+      ->check(CLI::Range(0, 17));
   CLI11_PARSE(app, argc, argv);
 
   const std::vector<Variant> variants = {
@@ -272,7 +285,7 @@ int main(int argc, char** argv) {
     }
     // ARKODE runs alone only: its final position is the alone run's, comparable with RK4's node run (same steps).
     const a3lcm::vehicle_state_t& last = v.arkode_erk ? alone.last : node.last;
-    std::printf(" (%.4f, %.4f, %.4f)\n", last.p_W_m[0], last.p_W_m[1], last.p_W_m[2]);
+    std::printf(" (%.*f, %.*f, %.*f)\n", digits, last.p_W_m[0], digits, last.p_W_m[1], digits, last.p_W_m[2]);
     std::fflush(stdout);
   }
 

@@ -246,12 +246,16 @@ class FlightControllerNode final : public common::Node {
     bus.subscribe<a3lcm::vehicle_state_t>(common::channels::kState, [this](const a3lcm::vehicle_state_t& s, int64_t) {
       state_ = s;
       have_state_ = true;
+      ++states_received_;
     });
     const int64_t now_us = executor.clock().now_us();
     next_us_ = (now_us - offset_us_ + period_us_ - 1) / period_us_ * period_us_ + offset_us_;
     executor.schedule(next_us_, period_us_, [this] { tick(); });
   }
   uint64_t published() const { return published_; }
+  // The states heard on the bus: how many, and the last (zero before the first).
+  uint64_t states_received() const { return states_received_; }
+  const a3lcm::vehicle_state_t& last_state() const { return state_; }
 
  private:
   void tick() {
@@ -272,6 +276,7 @@ class FlightControllerNode final : public common::Node {
   int64_t period_us_, offset_us_, next_us_ = 0;
   a3lcm::vehicle_state_t state_{};
   bool have_state_ = false;
+  uint64_t states_received_ = 0;
   uint64_t published_ = 0;
 };
 

@@ -12,6 +12,8 @@
 #include "a3lcm/actuator_cmd_t.hpp"
 #include "a3lcm/safety_event_t.hpp"
 #include "a3lcm/vehicle_state_t.hpp"
+#include "bench/dynamics/bus_recorder.hpp"
+#include "bench/dynamics/flight_controller.hpp"
 #include "common/channels.hpp"
 #include "common/runtime.hpp"
 #include "dynamics/actuator_script_node.hpp"
@@ -279,6 +281,37 @@ TEST(DynamicsNode, VirtualAndRealTimeGiveTheSameTrajectory) {
   const Eigen::Quaterniond q_mid(v_rec.states.at(10'000'000).q_WB[0], v_rec.states.at(10'000'000).q_WB[1],
                                  v_rec.states.at(10'000'000).q_WB[2], v_rec.states.at(10'000'000).q_WB[3]);
   EXPECT_GT(attitude_difference_rad(q_mid, Eigen::Quaterniond::Identity()) * 180.0 / M_PI, 10.0);
+}
+
+// bench_dynamics_virtual takes the last state from the controller, A3_STATE's only subscriber.
+TEST(DynamicsBenchNodes, TheControllerReportsTheStatesItHeard) {
+  common::VirtualRuntime rt;
+  DynamicsNode dyn(DynamicsNodeConfig{});
+  bench::FlightControllerNode controller(default_vehicle_params(), bench::patrol_plan(20.0));
+  rt.add(dyn);
+  rt.add(controller);
+  rt.run_until(15'000'000);
+  EXPECT_EQ(controller.states_received(), 1501u);
+  EXPECT_EQ(controller.last_state().utime_us, 15'000'000);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(controller.last_state().p_W_m[i], dyn.integrator().state().p_W_m[i]) << i;
+  EXPECT_GT(controller.last_state().p_W_m[2], 20.0);  // took off
+}
+
+// A recorder of the last state only must not subscribe to commands: each subscriber costs the
+// speed benchmark a delivery per message.
+TEST(DynamicsBenchNodes, ALastStateRecorderTakesNoCommands) {
+  common::VirtualRuntime rt;
+  bench::BusRecorder recorder(false);
+  rt.add(recorder);
+  a3lcm::actuator_cmd_t cmd{};
+  vehicle_state_t state{};
+  state.utime_us = 42;
+  rt.bus().publish(common::channels::kActuators, cmd);
+  rt.bus().publish(common::channels::kState, state);
+  rt.run_until(0);
+  EXPECT_EQ(rt.scheduler().events_run(), 1u);  // the state's delivery
+  EXPECT_EQ(recorder.state_count(), 1u);
+  EXPECT_EQ(recorder.last_state().utime_us, 42);
 }
 
 }  // namespace
