@@ -1,4 +1,5 @@
-// File → parse (RapidJSON) → schema (valijson) → semantic rules → facts.
+// File → parse (simdjson, RapidJSON where simdjson refuses) → shape → schema → semantic rules
+// → facts.
 #include "eval/episode_reader.hpp"
 
 #include <fcntl.h>
@@ -6,6 +7,7 @@
 #include <unistd.h>
 
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -138,7 +140,7 @@ EpisodeCheck EpisodeReader::check_file(const std::filesystem::path& path) {
 }
 
 void EpisodeReader::resize_buffer(std::size_t text_bytes) {
-  buffer_.resize(text_bytes + 1 + kRapidJsonPaddingBytes);
+  buffer_.resize(text_bytes + 1 + std::max(kRapidJsonPaddingBytes, kSimdjsonPaddingBytes));
 }
 
 EpisodeCheck EpisodeReader::too_big(std::uintmax_t size) const {
@@ -156,38 +158,25 @@ EpisodeCheck EpisodeReader::check_text(std::string_view text) {
 
 EpisodeCheck EpisodeReader::check_buffer(std::size_t size,
                                          const std::function<std::string()>& original_text) {
-  const std::string_view text(buffer_.data(), size);
-  if (const auto bad = find_invalid_utf8(text)) {
-    return invalid("json-syntax", "not UTF-8: invalid byte sequence at byte " + std::to_string(*bad));
-  }
-  if (std::memchr(text.data(), '\0', text.size()) != nullptr) {
-    return invalid("json-syntax", "a NUL byte outside a string: not JSON text");
-  }
-  buffer_[size] = '\0';
-  // The pool keeps its first chunk between files, so a typical episode parses without malloc;
-  // parsing in place saves copying every string.
+  // The pool keeps its first chunk between files, so a typical episode parses without malloc.
   pool_.Clear();
   rapidjson::Document document(&pool_);
-  if (!parser_.parse_insitu_shallow(document, buffer_.data())) {
-    // An error, or nesting too deep to parse recursively: again from the original text (in-place
-    // parsing rewrote the buffer), iteratively, so that a file of 100k '[' cannot overflow the
-    // stack (depth is checked after parsing) and errors are located as they always were.
-    const std::string original = original_text();
-    if (original.size() != size) {
-      return invalid("file-read", "cannot read: the file changed while reading");
-    }
-    std::memcpy(buffer_.data(), original.data(), size);
-    buffer_[size] = '\0';
+  const std::string_view text(buffer_.data(), size);
+  // simdjson's acceptance implies UTF-8, no NUL byte, nesting within the limit; only duplicate
+  // keys remain for the shape check, and the simdjson pass says whether there are any.
+  bool shape_may_fail = false;
+  if (size > kMaxSimdjsonTextBytes || !fast_parser_.parse(document, text)) {
     pool_.Clear();
     document.SetNull();
-    if (const auto parsed = parser_.parse_insitu(document, buffer_.data()); parsed.IsError()) {
-      return invalid("json-syntax", syntax_message(original, parsed.Offset(), parsed.Code()));
-    }
+    if (auto invalid_text = parse_reference(size, original_text, document)) return *invalid_text;
+    shape_may_fail = true;
+  } else {
+    shape_may_fail = fast_parser_.has_duplicate_key();
   }
   EpisodeCheck check;
   check.attempts_used = attempts_used_or_one(document);
   // Before anything that walks the document (valijson, the rules): bounds its depth for them.
-  if (shape_.check(document, check.violations)) {
+  if (shape_may_fail && shape_.check(document, check.violations)) {
     check.status = EpisodeStatus::kInvalid;
     return check;
   }
@@ -211,6 +200,34 @@ EpisodeCheck EpisodeReader::check_buffer(std::size_t size,
   check.status = EpisodeStatus::kValid;
   check.facts = extract_facts(document);
   return check;
+}
+
+std::optional<EpisodeCheck> EpisodeReader::parse_reference(
+    std::size_t size, const std::function<std::string()>& original_text,
+    rapidjson::Document& document) {
+  const std::string_view text(buffer_.data(), size);
+  if (const auto bad = find_invalid_utf8(text)) {
+    return invalid("json-syntax", "not UTF-8: invalid byte sequence at byte " + std::to_string(*bad));
+  }
+  if (std::memchr(text.data(), '\0', text.size()) != nullptr) {
+    return invalid("json-syntax", "a NUL byte outside a string: not JSON text");
+  }
+  buffer_[size] = '\0';
+  // Parsing in place saves copying every string.
+  if (parser_.parse_insitu_shallow(document, buffer_.data())) return std::nullopt;
+  // An error, or nesting too deep to parse recursively: again from the original text (in-place
+  // parsing rewrote the buffer), iteratively, so that a file of 100k '[' cannot overflow the
+  // stack (depth is checked after parsing) and errors are located as they always were.
+  const std::string original = original_text();
+  if (original.size() != size) return invalid("file-read", "cannot read: the file changed while reading");
+  std::memcpy(buffer_.data(), original.data(), size);
+  buffer_[size] = '\0';
+  pool_.Clear();
+  document.SetNull();
+  if (const auto parsed = parser_.parse_insitu(document, buffer_.data()); parsed.IsError()) {
+    return invalid("json-syntax", syntax_message(original, parsed.Offset(), parsed.Code()));
+  }
+  return std::nullopt;
 }
 
 }  // namespace a3::eval

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "eval/json_schema_validator.hpp"
 #include "eval/json_shape.hpp"
 #include "eval/scoring_profile.hpp"
+#include "eval/simdjson_parser.hpp"
 #include "eval/violation.hpp"
 
 namespace a3::eval {
@@ -47,6 +49,11 @@ class EpisodeReader {
   // buffer_ holds `size` bytes of text and room for a NUL; original_text() gives the text
   // back when a syntax error has to be located (the parser rewrites the buffer).
   EpisodeCheck check_buffer(std::size_t size, const std::function<std::string()>& original_text);
+  // The reference parse (RapidJSON) of buffer_'s text into `document`; nothing when it parsed,
+  // else why the file is invalid (not UTF-8, a NUL byte, a syntax error).
+  std::optional<EpisodeCheck> parse_reference(std::size_t size,
+                                              const std::function<std::string()>& original_text,
+                                              rapidjson::Document& document);
   EpisodeCheck too_big(std::uintmax_t size) const;
   // Room for text_bytes, the NUL the parser needs and the bytes its SIMD scan may read beyond.
   void resize_buffer(std::size_t text_bytes);
@@ -56,6 +63,7 @@ class EpisodeReader {
   std::uintmax_t max_file_bytes_;
   static constexpr std::size_t kPoolChunkBytes = 256u << 10;
   JsonShapeChecker shape_;
+  SimdjsonParser fast_parser_;  // first; ExactNumberParser where it does not accept the text
   ExactNumberParser parser_;
   std::string buffer_;  // the file's bytes, parsed in place
   std::vector<char> pool_chunk_;

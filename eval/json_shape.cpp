@@ -15,7 +15,7 @@ std::string_view name_of(const rapidjson::Value::Member& m) {
 }
 
 // Below this many members, comparing every pair is cheaper than sorting.
-constexpr rapidjson::SizeType kPairwiseMembers = 24;
+constexpr std::size_t kPairwiseMembers = 24;
 
 }  // namespace
 
@@ -52,19 +52,33 @@ bool JsonShapeChecker::check(const rapidjson::Value& root, Violations& out) {
 void JsonShapeChecker::check_keys(const rapidjson::Value& object, Violations& out) {
   const rapidjson::SizeType n = object.MemberCount();
   if (n < 2) return;
-  auto report = [&](std::string_view key) {
-    // stack_ holds the object's ancestors, each at the child leading to it.
-    out.push_back({current_path(), "json-duplicate-key",
-                   "duplicate key \"" + std::string(key) + "\" (readers disagree on which value counts)"});
-  };
   keys_.clear();
   for (auto m = object.MemberBegin(); m != object.MemberEnd(); ++m) keys_.push_back(name_of(*m));
-  if (n > kPairwiseMembers) {
-    std::sort(keys_.begin(), keys_.end());
-    for (std::size_t i = 1; i < keys_.size(); ++i) {
-      if (keys_[i] == keys_[i - 1] && (i < 2 || keys_[i - 2] != keys_[i])) report(keys_[i]);
+  repeated_.clear();
+  if (!find_repeated_keys(keys_.data(), keys_.size(), &repeated_)) return;
+  // stack_ holds the object's ancestors, each at the child leading to it.
+  for (const std::string_view key : repeated_) {
+    out.push_back({current_path(), "json-duplicate-key",
+                   "duplicate key \"" + std::string(key) + "\" (readers disagree on which value counts)"});
+  }
+}
+
+bool find_repeated_keys(std::string_view* keys, std::size_t count,
+                        std::vector<std::string_view>* repeated) {
+  if (count < 2) return false;
+  bool found = false;
+  // Each repeated key once (stopping at the first when nobody wants the list).
+  auto report = [&](std::string_view key) {
+    found = true;
+    if (repeated != nullptr) repeated->push_back(key);
+    return repeated == nullptr;
+  };
+  if (count > kPairwiseMembers) {
+    std::sort(keys, keys + count);
+    for (std::size_t i = 1; i < count; ++i) {
+      if (keys[i] == keys[i - 1] && (i < 2 || keys[i - 2] != keys[i]) && report(keys[i])) break;
     }
-    return;
+    return found;
   }
   // Length and first byte settle almost every pair without comparing the keys' bytes.
   const auto same = [](std::string_view a, std::string_view b) {
@@ -79,21 +93,22 @@ void JsonShapeChecker::check_keys(const rapidjson::Value& object, Violations& ou
                                            static_cast<unsigned char>(key.back());
     return uint64_t{1} << (mix & 63u);
   };
-  uint64_t seen = bit_of(keys_[0]);
-  for (std::size_t i = 1; i < keys_.size(); ++i) {
-    const uint64_t bit = bit_of(keys_[i]);
+  uint64_t seen = bit_of(keys[0]);
+  for (std::size_t i = 1; i < count; ++i) {
+    const uint64_t bit = bit_of(keys[i]);
     const bool maybe_repeated = (seen & bit) != 0;
     seen |= bit;
     if (!maybe_repeated) continue;
     for (std::size_t j = 0; j < i; ++j) {
-      if (!same(keys_[i], keys_[j])) continue;
-      // Report each key once: at its second occurrence (j is the first; none between j and i).
+      if (!same(keys[i], keys[j])) continue;
+      // Each key once: at its second occurrence (j is the first; none between j and i).
       bool earlier = false;
-      for (std::size_t k = j + 1; k < i && !earlier; ++k) earlier = same(keys_[k], keys_[i]);
-      if (!earlier) report(keys_[i]);
+      for (std::size_t k = j + 1; k < i && !earlier; ++k) earlier = same(keys[k], keys[i]);
+      if (!earlier && report(keys[i])) return true;
       break;
     }
   }
+  return found;
 }
 
 // Each frame names the child it last stepped into (next - 1).

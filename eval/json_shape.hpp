@@ -27,6 +27,15 @@ inline common::JsonLimits episode_json_limits() {
   return limits;
 }
 
+// Appends to `repeated` (when not null) each key that keys[0..count) holds more than once, once
+// each; returns whether there is one (at the first found when `repeated` is null). Reorders
+// the keys.
+bool find_repeated_keys(std::string_view* keys, std::size_t count,
+                        std::vector<std::string_view>* repeated);
+inline bool has_repeated_key(std::string_view* keys, std::size_t count) {
+  return find_repeated_keys(keys, count, nullptr);
+}
+
 class JsonShapeChecker {
  public:
   explicit JsonShapeChecker(int max_depth = kMaxEpisodeDepth) : max_depth_(max_depth) {}
@@ -48,6 +57,7 @@ class JsonShapeChecker {
   int max_depth_;
   std::vector<Frame> stack_;
   std::vector<std::string_view> keys_;
+  std::vector<std::string_view> repeated_;
 };
 
 }  // namespace a3::eval

@@ -1,7 +1,9 @@
 // Fuzz target "episode": an episode file's text through the scorer's reader (UTF-8, JSON
 // syntax, schema, failure stub, semantic checks, facts), then the α³ pillars of a valid one
 // under both scoring profiles. Invariants: every pillar and α³ lie in [0, 1]; the compiled
-// schema (what scoring validates with) and valijson give the same verdict on every document.
+// schema (what scoring validates with) and valijson give the same verdict on every document;
+// the fast parser (simdjson) and the reference parser build the same document from every text
+// simdjson accepts.
 #include <cstring>
 #include <string>
 #include <string_view>
@@ -11,6 +13,7 @@
 #include "eval/episode_schema.hpp"
 #include "eval/exact_numbers.hpp"
 #include "eval/json_shape.hpp"
+#include "eval/parser_agreement.hpp"
 #include "eval/pillars.hpp"
 #include "fuzz/fuzz_target.hpp"
 
@@ -56,6 +59,7 @@ A3_FUZZ_TARGET(episode) {
   static a3::eval::EpisodeReader reader(validator, profile);
   const std::string_view text(reinterpret_cast<const char*>(input.data()), input.size());
   require_validators_agree(text);
+  a3::fuzz::require(!a3::eval::compare_parsers(text).disagreement, "simdjson and the reference parser disagree");
   const a3::eval::EpisodeCheck check = reader.check_text(text);
   if (check.status == a3::eval::EpisodeStatus::kValid) score_both_profiles(check.facts);
   a3::fuzz::require(check.status != a3::eval::EpisodeStatus::kInvalid || !check.violations.empty(),

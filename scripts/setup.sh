@@ -29,7 +29,8 @@ packages=(
   libode-dev                                     # Open Dynamics Engine integrator
   libsundials-dev                                # SUNDIALS CVODE integrator
   nlohmann-json3-dev                             # JSON for configuration and episode writing
-  rapidjson-dev                                  # fast JSON parsing for scoring corpora
+  rapidjson-dev                                  # JSON parsing: the reference parser of scoring
+  libsimdjson-dev                                # SIMD JSON parsing: scoring's fast path
   libvalijson-dev                                # JSON Schema validation
   libcli11-dev                                   # command line
   libcurl4-openssl-dev                           # HTTP client for LLM endpoints

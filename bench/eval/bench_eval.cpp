@@ -1,4 +1,5 @@
-// Per-episode cost of each scoring stage on the public α³-Bench episodes: UTF-8 check, parse,
+// Per-episode cost of each scoring stage on the public α³-Bench episodes: UTF-8 check, parse
+// (RapidJSON, and simdjson, the fast path),
 // depth and duplicate-key check, schema validation (valijson and the compiled schema), semantic
 // rules, fact extraction, pillars, and the whole check; then whole-corpus scoring (score_corpus)
 // on 1 and 2 threads with each schema engine, over $A3_BENCH_CORPUS (a folder of episodes, e.g.
@@ -22,6 +23,7 @@
 #include "eval/exact_numbers.hpp"
 #include "eval/json_shape.hpp"
 #include "eval/pillars.hpp"
+#include "eval/simdjson_parser.hpp"
 #include "eval/utf8.hpp"
 
 namespace {
@@ -150,6 +152,27 @@ void BM_ParseInPlaceExactNumbers(benchmark::State& state) {
   report(state);
 }
 
+// The fast path episode_reader takes first: simdjson, then the same RapidJSON document built
+// from its result (with the long-exponent scan and the duplicate-key answer).
+void BM_ParseSimdjson(benchmark::State& state) {
+  if (!need_corpus(state)) return;
+  std::string buffer;
+  SimdjsonParser parser;
+  std::vector<char> chunk(256u << 10);
+  rapidjson::MemoryPoolAllocator<> pool(chunk.data(), chunk.size());
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::string& text = episodes()[i++ % episodes().size()];
+    buffer.assign(text.size() + 1 + kSimdjsonPaddingBytes, '\0');
+    std::copy(text.begin(), text.end(), buffer.begin());
+    pool.Clear();
+    rapidjson::Document d(&pool);
+    benchmark::DoNotOptimize(parser.parse(d, std::string_view(buffer.data(), text.size())));
+    benchmark::DoNotOptimize(d.IsObject());
+  }
+  report(state);
+}
+
 void BM_DepthAndDuplicateKeys(benchmark::State& state) {
   if (!need_corpus(state)) return;
   JsonShapeChecker checker;
@@ -240,6 +263,7 @@ BENCHMARK(BM_Utf8Check);
 BENCHMARK(BM_ParseInPlace);
 BENCHMARK(BM_ParseInPlaceIterative);
 BENCHMARK(BM_ParseInPlaceExactNumbers)->Arg(0)->Arg(1);
+BENCHMARK(BM_ParseSimdjson);
 BENCHMARK(BM_DepthAndDuplicateKeys);
 BENCHMARK(BM_SchemaValidation)->Arg(0)->Arg(1);
 BENCHMARK(BM_SemanticRules);
