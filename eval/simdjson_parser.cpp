@@ -16,7 +16,7 @@ namespace a3::eval {
 namespace {
 
 // The first document's room; simdjson grows it (up to kMaxSimdjsonTextBytes) as texts need.
-constexpr std::size_t kInitialCapacityBytes = 64u << 10;
+constexpr std::size_t kInitialCapacityBytes = 32u << 10;
 
 // An integer as ExactNumberParser sends it: the narrowest of int, unsigned, int64, uint64.
 template <class Handler>

@@ -25,9 +25,10 @@ namespace a3::eval {
 
 // Bytes the text's buffer must hold readable beyond its end.
 inline constexpr std::size_t kSimdjsonPaddingBytes = simdjson::SIMDJSON_PADDING;
-// Larger texts go to the reference parser: simdjson's memory is about six times the text, per
-// thread, and episodes are 5-50 kB.
-inline constexpr std::size_t kMaxSimdjsonTextBytes = 1u << 20;
+// Larger texts go to the reference parser: simdjson keeps about 14 bytes per byte of the
+// largest text it has parsed (its tape and structural indexes), per reader, and episodes are
+// 5-50 kB; at most 3.5 MiB a thread.
+inline constexpr std::size_t kMaxSimdjsonTextBytes = 256u << 10;
 // Below kMaxEpisodeDepth (json_shape.hpp), so what simdjson accepts is never too deep; deeper
 // documents go to the reference parser, which reports them.
 inline constexpr std::size_t kMaxSimdjsonDepth = 200;
