@@ -41,7 +41,8 @@ constexpr int kLongExponentDigits = 3;
 
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
 
-// Whether the exponent marker at text[at] is followed by a sign and three digits or more.
+// Whether the exponent marker at text[at] is followed by an optional sign and three digits or
+// more.
 bool long_exponent_at(std::string_view text, std::size_t at) {
   std::size_t i = at + 1;
   if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
