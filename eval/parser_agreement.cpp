@@ -24,8 +24,8 @@ bool same_number(const rapidjson::Value& a, const rapidjson::Value& b) {
 }
 
 bool same_string(const rapidjson::Value& a, const rapidjson::Value& b) {
-  return a.GetStringLength() == b.GetStringLength() &&
-         std::memcmp(a.GetString(), b.GetString(), a.GetStringLength()) == 0;
+  return std::string_view(a.GetString(), a.GetStringLength()) ==
+         std::string_view(b.GetString(), b.GetStringLength());
 }
 
 bool has_duplicate_key_violation(const Violations& violations) {

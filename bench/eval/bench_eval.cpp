@@ -123,28 +123,38 @@ void BM_ParseInPlaceIterative(benchmark::State& state) {
   report(state);
 }
 
+// The read buffer and document pool EpisodeReader keeps between files.
+struct ReaderMemory {
+  std::string buffer;
+  std::vector<char> chunk = std::vector<char>(256u << 10);
+  rapidjson::MemoryPoolAllocator<> pool{chunk.data(), chunk.size()};
+
+  // `text` in the buffer followed by 1 + padding zero bytes; the pool emptied.
+  char* next(const std::string& text, std::size_t padding) {
+    buffer.assign(text.size() + 1 + padding, '\0');
+    std::copy(text.begin(), text.end(), buffer.begin());
+    pool.Clear();
+    return buffer.data();
+  }
+};
+
 // Numbers converted by eval/exact_numbers (RapidJSON's full-precision mode misreads 0E120), into
 // a pool that keeps its memory between documents as EpisodeReader's does. Argument 0: the
 // iterative parse (the fallback for errors and deep nesting), 1: the recursive one episode_reader
 // uses first.
 void BM_ParseInPlaceExactNumbers(benchmark::State& state) {
   if (!need_corpus(state)) return;
-  std::string buffer;
+  ReaderMemory memory;
   ExactNumberParser parser;
-  std::vector<char> chunk(256u << 10);
-  rapidjson::MemoryPoolAllocator<> pool(chunk.data(), chunk.size());
   const bool recursive = state.range(0) == 1;
   std::size_t i = 0;
   for (auto _ : state) {
-    const std::string& text = episodes()[i++ % episodes().size()];
-    buffer.assign(text.size() + 1 + kRapidJsonPaddingBytes, '\0');
-    std::copy(text.begin(), text.end(), buffer.begin());
-    pool.Clear();
-    rapidjson::Document d(&pool);
+    char* text = memory.next(episodes()[i++ % episodes().size()], kRapidJsonPaddingBytes);
+    rapidjson::Document d(&memory.pool);
     if (recursive) {
-      benchmark::DoNotOptimize(parser.parse_insitu_shallow(d, buffer.data()));
+      benchmark::DoNotOptimize(parser.parse_insitu_shallow(d, text));
     } else {
-      parser.parse_insitu(d, buffer.data());
+      parser.parse_insitu(d, text);
     }
     benchmark::DoNotOptimize(d.IsObject());
   }
@@ -156,18 +166,14 @@ void BM_ParseInPlaceExactNumbers(benchmark::State& state) {
 // from its result (with the long-exponent scan and the duplicate-key answer).
 void BM_ParseSimdjson(benchmark::State& state) {
   if (!need_corpus(state)) return;
-  std::string buffer;
+  ReaderMemory memory;
   SimdjsonParser parser;
-  std::vector<char> chunk(256u << 10);
-  rapidjson::MemoryPoolAllocator<> pool(chunk.data(), chunk.size());
   std::size_t i = 0;
   for (auto _ : state) {
     const std::string& text = episodes()[i++ % episodes().size()];
-    buffer.assign(text.size() + 1 + kSimdjsonPaddingBytes, '\0');
-    std::copy(text.begin(), text.end(), buffer.begin());
-    pool.Clear();
-    rapidjson::Document d(&pool);
-    benchmark::DoNotOptimize(parser.parse(d, std::string_view(buffer.data(), text.size())));
+    char* padded = memory.next(text, kSimdjsonPaddingBytes);
+    rapidjson::Document d(&memory.pool);
+    benchmark::DoNotOptimize(parser.parse(d, std::string_view(padded, text.size())));
     benchmark::DoNotOptimize(d.IsObject());
   }
   report(state);
