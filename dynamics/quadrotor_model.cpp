@@ -63,8 +63,7 @@ Eigen::Vector3d QuadrotorModel::specific_force_B_mps2(const VehicleState& s,
 }
 
 double QuadrotorModel::rotor_speed_after(double speed, double command, double dt_s) const {
-  const double tau = command >= speed ? params_.rotor.time_constant_up_s : params_.rotor.time_constant_down_s;
-  return command + (speed - command) * std::exp(-dt_s / tau);
+  return command + (speed - command) * std::exp(-dt_s / lag_time_constant_s(speed, command));
 }
 
 void QuadrotorModel::derivatives(const double* y, const RotorSpeeds& command,

@@ -50,9 +50,7 @@ class QuadrotorModel {
 
   // Motor lag: dω/dt toward the command, faster up than down.
   double rotor_acceleration_radps2(double speed_radps, double command_radps) const {
-    const double tau =
-        command_radps >= speed_radps ? params_.rotor.time_constant_up_s : params_.rotor.time_constant_down_s;
-    return (command_radps - speed_radps) / tau;
+    return (command_radps - speed_radps) / lag_time_constant_s(speed_radps, command_radps);
   }
   // ω(t + dt) for a command held over dt (exact solution of the lag).
   double rotor_speed_after(double speed_radps, double command_radps, double dt_s) const;
@@ -78,6 +76,10 @@ class QuadrotorModel {
                    const Eigen::Vector3d& wind_W_mps, bool on_ground, double* dydt) const;
 
   // Throttle (0..1, as an ESC takes it) to rotor speed command: ω = throttle · ω_max.
+  // The motor's time constant toward a command: spinning up or down.
+  double lag_time_constant_s(double speed_radps, double command_radps) const {
+    return command_radps >= speed_radps ? params_.rotor.time_constant_up_s : params_.rotor.time_constant_down_s;
+  }
   double throttle_to_speed_radps(double throttle) const {
     return std::clamp(throttle, 0.0, 1.0) * params_.rotor.max_speed_radps;
   }
