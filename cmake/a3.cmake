@@ -1,13 +1,15 @@
 # Helpers shared by every folder's CMakeLists.txt.
 
 # a3_library(NAME SOURCES ... DEPS ...): a static library whose headers are included
-# from the repository root.
+# from the repository root. Its code is compiled as the compiler's default for programs
+# (position-independent executable, -fPIE on Debian), not as for a shared library (-fPIC): the
+# libraries only ever go into programs, and -fPIC would have GCC assume every public function
+# may be replaced at load time, so none is inlined into another and calls go through the PLT.
 function(a3_library name)
   cmake_parse_arguments(A "" "" "SOURCES;DEPS" ${ARGN})
   add_library(${name} STATIC ${A_SOURCES})
   target_include_directories(${name} PUBLIC ${CMAKE_SOURCE_DIR} ${A3_GENERATED_DIR})
   target_link_libraries(${name} PUBLIC ${A_DEPS})
-  set_target_properties(${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
 endfunction()
 
 # a3_gtest(NAME SOURCES ... DEPS ... [LABELS label] [TIMEOUT s] [SERIAL]): a GoogleTest program,
