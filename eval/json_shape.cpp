@@ -2,6 +2,7 @@
 #include "eval/json_shape.hpp"
 
 #include "common/json_pointer.hpp"
+#include "eval/key_bucket.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -84,18 +85,10 @@ bool find_repeated_keys(std::string_view* keys, std::size_t count,
   const auto same = [](std::string_view a, std::string_view b) {
     return a.size() == b.size() && (a.empty() || (a[0] == b[0] && a == b));
   };
-  // A key can only repeat an earlier one with the same length and first and last bytes: a
-  // 64-bit mask of those seen lets almost every key skip the comparisons.
-  const auto bit_of = [](std::string_view key) {
-    const unsigned mix = key.empty() ? 0u
-                                     : static_cast<unsigned>(key.size()) * 7u +
-                                           static_cast<unsigned char>(key.front()) * 3u +
-                                           static_cast<unsigned char>(key.back());
-    return uint64_t{1} << (mix & 63u);
-  };
-  uint64_t seen = bit_of(keys[0]);
+  // A key can only repeat an earlier one in the same bucket (key_bucket.hpp).
+  uint64_t seen = key_bucket_bit(keys[0]);
   for (std::size_t i = 1; i < count; ++i) {
-    const uint64_t bit = bit_of(keys[i]);
+    const uint64_t bit = key_bucket_bit(keys[i]);
     const bool maybe_repeated = (seen & bit) != 0;
     seen |= bit;
     if (!maybe_repeated) continue;

@@ -11,6 +11,7 @@
 #endif
 
 #include "eval/json_shape.hpp"
+#include "eval/key_bucket.hpp"
 
 namespace a3::eval {
 namespace {
@@ -96,7 +97,6 @@ bool SimdjsonParser::parse(rapidjson::Document& document, std::string_view text)
   if (!usable_ || has_long_exponent(text)) return false;
   if (parser_.parse(text.data(), text.size(), false).get(root) != simdjson::SUCCESS) return false;
   has_duplicate_key_ = false;
-  keys_.clear();
   bool built = false;
   auto generate = [&](rapidjson::Document& target) {
     built = emit(root, target);
@@ -144,19 +144,24 @@ template <class Handler>
 bool SimdjsonParser::emit_object(simdjson::dom::object object, Handler& handler) {
   if (!handler.StartObject()) return false;
   rapidjson::SizeType count = 0;
-  const std::size_t first_key = keys_.size();
+  uint64_t buckets_seen = 0;  // key_bucket.hpp: a key in a bucket already seen may repeat one
+  bool may_repeat = false;
   for (simdjson::dom::key_value_pair field : object) {
     if (!handler.Key(field.key.data(), length_of(field.key), false)) return false;
-    keys_.push_back(field.key);
+    const uint64_t bucket = key_bucket_bit(field.key);
+    may_repeat |= (buckets_seen & bucket) != 0;
+    buckets_seen |= bucket;
     if (!emit(field.value, handler)) return false;
     ++count;
   }
-  // keys_ is a stack: this object's keys sit above those of the objects it is inside.
-  if (!has_duplicate_key_ && count > 1) {
-    has_duplicate_key_ = has_repeated_key(keys_.data() + first_key, count);
-  }
-  keys_.resize(first_key);
+  if (may_repeat && !has_duplicate_key_) has_duplicate_key_ = repeats_a_key(object);
   return handler.EndObject(count);
+}
+
+bool SimdjsonParser::repeats_a_key(simdjson::dom::object object) {
+  keys_.clear();
+  for (simdjson::dom::key_value_pair field : object) keys_.push_back(field.key);
+  return has_repeated_key(keys_.data(), keys_.size());
 }
 
 }  // namespace a3::eval

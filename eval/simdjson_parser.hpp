@@ -51,9 +51,11 @@ class SimdjsonParser {
   bool emit(simdjson::dom::element element, Handler& handler);
   template <class Handler>
   bool emit_object(simdjson::dom::object object, Handler& handler);
+  // Whether the object has a key twice; called only when two keys share a bucket.
+  bool repeats_a_key(simdjson::dom::object object);
 
   simdjson::dom::parser parser_;
-  std::vector<std::string_view> keys_;  // one object's keys, for the duplicate check
+  std::vector<std::string_view> keys_;  // one object's keys, for repeats_a_key
   bool has_duplicate_key_ = false;
   bool usable_ = false;  // simdjson's memory allocated with kMaxSimdjsonDepth
 };
