@@ -107,7 +107,7 @@ bool SimdjsonParser::parse(rapidjson::Document& document, std::string_view text)
 }
 
 template <class Handler>
-bool SimdjsonParser::emit(simdjson::dom::element element, Handler& handler) {
+inline bool SimdjsonParser::emit(simdjson::dom::element element, Handler& handler) {
   using Type = simdjson::dom::element_type;
   switch (element.type()) {
     case Type::NULL_VALUE: return handler.Null();
@@ -122,22 +122,21 @@ bool SimdjsonParser::emit(simdjson::dom::element element, Handler& handler) {
       const std::string_view text = element.get_string().value_unsafe();  // a view: no copy
       return handler.String(text.data(), length_of(text), false);
     }
-    case Type::ARRAY: {
-      if (!handler.StartArray()) return false;
-      rapidjson::SizeType count = 0;
-      const simdjson::dom::array array = element.get_array().value_unsafe();
-      for (simdjson::dom::element child : array) {
-        if (!emit(child, handler)) return false;
-        ++count;
-      }
-      return handler.EndArray(count);
-    }
-    case Type::OBJECT: {
-      const simdjson::dom::object object = element.get_object().value_unsafe();
-      return emit_object(object, handler);
-    }
+    case Type::ARRAY: return emit_array(element.get_array().value_unsafe(), handler);
+    case Type::OBJECT: return emit_object(element.get_object().value_unsafe(), handler);
   }
   return false;
+}
+
+template <class Handler>
+bool SimdjsonParser::emit_array(simdjson::dom::array array, Handler& handler) {
+  if (!handler.StartArray()) return false;
+  rapidjson::SizeType count = 0;
+  for (simdjson::dom::element child : array) {
+    if (!emit(child, handler)) return false;
+    ++count;
+  }
+  return handler.EndArray(count);
 }
 
 template <class Handler>
