@@ -9,6 +9,7 @@
 #include <iostream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "eval/json_shape.hpp"
@@ -101,6 +102,38 @@ TEST(CompiledSchema, GivesValijsonsVerdictsOnTheCasesThatMatter) {
   const CompiledSchema halves(R"({"multipleOf": 0.5})", "halves");
   EXPECT_FALSE(valid_json(halves, "\"0.3\""));
   EXPECT_TRUE(valid_json(halves, "\"x\""));
+}
+
+// Properties are looked up in the schema's order, one comparison each while the document lists
+// them in that order: members in another order, absent, unknown or repeated before or after the
+// others must still give valijson's verdict (it checks the first member of a name).
+TEST(CompiledSchema, LooksPropertiesUpAsValijsonWhateverTheMembersOrder) {
+  const char* schema = R"({"properties": {"a": {"type": "number"}, "b": {"type": "string"},
+                                          "c": {"type": "boolean"}}, "required": ["c"]})";
+  const CompiledSchema compiled(schema, "ordered");
+  const JsonSchemaValidator reference(schema, "ordered", SchemaEngine::kValijson);
+  const std::vector<std::pair<const char*, bool>> cases = {
+      {R"({"a": 1, "b": "x", "c": true})", true},
+      {R"({"c": true, "b": "x", "a": 1})", true},
+      {R"({"a": 1, "c": true})", true},
+      {R"({"x": 0, "a": 1, "b": "x", "c": true})", true},
+      {R"({"a": 1, "b": 2, "c": true})", false},
+      {R"({"b": "x", "a": "1", "c": true})", false},
+      {R"({"a": 1, "b": "x"})", false},
+      {R"({"a": 1, "b": "x", "c": true, "b": 2})", true},
+      {R"({"a": 1, "b": 2, "c": true, "b": "x"})", false},
+      {R"({"b": "x", "a": 1, "b": 2, "c": true})", true},
+      {R"({"b": 2, "a": 1, "b": "x", "c": true})", false},
+      {R"({"a": "1", "a": 1, "b": "x", "c": true})", false},
+      {R"({"a": 1, "a": "1", "b": "x", "c": true})", true},
+  };
+  for (const auto& [json, valid] : cases) {
+    rapidjson::Document document;
+    document.Parse(json);
+    ASSERT_FALSE(document.HasParseError()) << json;
+    EXPECT_EQ(reference.is_valid(document), valid) << json;
+    EXPECT_EQ(compiled.is_valid(document), valid) << json;
+  }
 }
 
 // ---- Differential: the fuzz corpus ---------------------------------------------------------
