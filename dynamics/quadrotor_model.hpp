@@ -48,6 +48,10 @@ class QuadrotorModel {
   // What an accelerometer at the centre of mass reads (specific force, body frame).
   Eigen::Vector3d specific_force_B_mps2(const VehicleState& s, const Eigen::Vector3d& wind_W_mps) const;
 
+  // The motor's time constant toward a command: spinning up or down.
+  double lag_time_constant_s(double speed_radps, double command_radps) const {
+    return command_radps >= speed_radps ? params_.rotor.time_constant_up_s : params_.rotor.time_constant_down_s;
+  }
   // Motor lag: dω/dt toward the command, faster up than down.
   double rotor_acceleration_radps2(double speed_radps, double command_radps) const {
     return (command_radps - speed_radps) / lag_time_constant_s(speed_radps, command_radps);
@@ -76,10 +80,6 @@ class QuadrotorModel {
                    const Eigen::Vector3d& wind_W_mps, bool on_ground, double* dydt) const;
 
   // Throttle (0..1, as an ESC takes it) to rotor speed command: ω = throttle · ω_max.
-  // The motor's time constant toward a command: spinning up or down.
-  double lag_time_constant_s(double speed_radps, double command_radps) const {
-    return command_radps >= speed_radps ? params_.rotor.time_constant_up_s : params_.rotor.time_constant_down_s;
-  }
   double throttle_to_speed_radps(double throttle) const {
     return std::clamp(throttle, 0.0, 1.0) * params_.rotor.max_speed_radps;
   }

@@ -72,10 +72,7 @@ class PropertyCursor {
 
 bool is_property_name(const std::vector<NamedSchema>& properties, const rapidjson::Value& name) {
   for (const NamedSchema& property : properties) {
-    if (property.name.size() == name.GetStringLength() &&
-        std::memcmp(property.name.data(), name.GetString(), property.name.size()) == 0) {
-      return true;
-    }
+    if (is_named(name, property.name)) return true;
   }
   return false;
 }

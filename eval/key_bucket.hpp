@@ -4,7 +4,6 @@
 // check (json_shape.cpp) and by the simdjson pass (simdjson_parser.cpp), which must agree.
 #pragma once
 
-#include <cstddef>
 #include <cstdint>
 #include <string_view>
 
