@@ -68,6 +68,12 @@ ConversationNode::~ConversationNode() {
 
 double ConversationNode::now_s() const { return executor_->clock().now_us() * 1e-6 - start_s_; }
 
+// In whole microseconds: a wait polled at a period that divides it ends exactly on a poll, not
+// on one side or the other of it as the rounding of a difference of seconds falls.
+bool ConversationNode::lasted(int64_t since_us, double span_s) const {
+  return executor_->clock().now_us() - since_us >= std::llround(span_s * 1e6);
+}
+
 std::vector<Turn> ConversationNode::turns() const {
   std::lock_guard<std::mutex> lock(turns_mutex_);
   return turns_;
@@ -91,9 +97,9 @@ void ConversationNode::start(common::Executor& executor, common::Bus& bus) {
     if (!s.on_ground) has_flown_ = true;
     const double speed = std::sqrt(s.v_W_mps[0] * s.v_W_mps[0] + s.v_W_mps[1] * s.v_W_mps[1] + s.v_W_mps[2] * s.v_W_mps[2]);
     if (speed < config_.settle_speed_mps) {
-      if (still_since_s_ < 0.0) still_since_s_ = now_s();
+      if (still_since_us_ < 0) still_since_us_ = executor_->clock().now_us();
     } else {
-      still_since_s_ = -1.0;
+      still_since_us_ = -1;
     }
   });
   bus.subscribe<a3lcm::fc_status_t>(common::channels::kFcStatus,
@@ -135,8 +141,8 @@ nlohmann::json ConversationNode::net_json() const {
 
 bool ConversationNode::settled() const {
   const int8_t mode = tracker_.fc_status().mode;
-  return (mode == kModeHold || mode == kModeDisarmed) && still_since_s_ >= 0.0 &&
-         now_s() - still_since_s_ >= config_.settle_time_s;
+  return (mode == kModeHold || mode == kModeDisarmed) && still_since_us_ >= 0 &&
+         lasted(still_since_us_, config_.settle_time_s);
 }
 
 AgentContext ConversationNode::make_context() const {
@@ -283,13 +289,12 @@ void ConversationNode::decided(AgentDecision d, double measured_s) {
 }
 
 void ConversationNode::start_user_turn() {
-  user_wait_started_s_ = now_s();
+  user_wait_started_us_ = executor_->clock().now_us();
   user_timer_ = executor_->schedule_every(250'000, [this] { wait_for_user_trigger(); });
 }
 
 void ConversationNode::wait_for_user_trigger() {
-  const double waited = now_s() - user_wait_started_s_;
-  if (waited < config_.user_min_wait_s) return;
+  if (!lasted(user_wait_started_us_, config_.user_min_wait_s)) return;
   SupervisorView v;
   v.mission = &config_.mission;
   v.progress = tracker_.to_json();
@@ -325,7 +330,7 @@ void ConversationNode::wait_for_user_trigger() {
   v.turn_number = current_.number;
   v.max_turns = config_.max_turns;
   const bool trigger = settled() || v.objectives_newly_done > 0 || v.network_degraded || !v.traffic_alert.empty() ||
-                       v.landed_after_flight || waited >= config_.user_max_wait_s;
+                       v.landed_after_flight || lasted(user_wait_started_us_, config_.user_max_wait_s);
   if (!trigger) return;
   executor_->cancel(user_timer_);
   if (!v.traffic_alert.empty()) alerted_peers_.push_back(pending_alert_peer_);

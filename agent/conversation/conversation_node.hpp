@@ -106,6 +106,7 @@ class ConversationNode final : public common::Node {
   AgentContext make_context() const;
   nlohmann::json net_json() const;
   double now_s() const;
+  bool lasted(int64_t since_us, double span_s) const;  // since_us on the executor's clock
   bool settled() const;
 
   ConversationConfig config_;
@@ -133,8 +134,8 @@ class ConversationNode final : public common::Node {
   a3lcm::network_state_t net_{};
   bool have_net_ = false;
   bool degraded_at_last_user_turn_ = false;
-  double still_since_s_ = -1.0;
-  double user_wait_started_s_ = 0.0;
+  int64_t still_since_us_ = -1;  // on the executor's clock; < 0: moving
+  int64_t user_wait_started_us_ = 0;
   int done_at_last_user_turn_ = 0;
   bool has_flown_ = false;
   nlohmann::json last_telemetry_;
