@@ -22,6 +22,7 @@ inline constexpr const char* kTraffic = "A3_TRAFFIC";        // traffic_state_t,
 inline constexpr const char* kEpisode = "A3_EPISODE";        // episode_event_t, orchestrator
 inline constexpr const char* kSafety = "A3_SAFETY";          // safety_event_t, any node
 inline constexpr const char* kClock = "A3_CLOCK";            // sim_clock_t, lockstep pacer (grants)
+inline constexpr const char* kClockAck = "A3_CLOCK_ACK";     // clock_ack_t, lockstep followers (answers)
 inline constexpr const char* kNodeStats = "A3_NODE_STATS";   // node_stats_t, runtime (every node)
 
 }  // namespace a3::common::channels

@@ -55,6 +55,7 @@ LcmBus::~LcmBus() {
 }
 
 bool LcmBus::publish_raw(const std::string& channel, const uint8_t* data, std::size_t size) {
+  ++messages_published_;
   if (lcm_->publish(channel, data, static_cast<unsigned int>(size)) != 0) {
     ++publish_failures_;
     log_warn("bus", "LCM publish on " + channel + " failed (" + url_ + ")");
@@ -93,9 +94,11 @@ int LcmBus::handle_ready() {
   // (the fd stays readable; the executor comes back for the rest).
   constexpr int kMaxMessagesPerCall = 64;
   int handled = 0;
-  while (handled < kMaxMessagesPerCall && lcm_->handleTimeout(0) > 0) ++handled;
+  while (handled < kMaxMessagesPerCall && handle_one()) ++handled;
   return handled;
 }
+
+bool LcmBus::handle_one() { return lcm_->handleTimeout(0) > 0; }
 
 bool LcmBus::handle_timeout(int timeout_ms) { return lcm_->handleTimeout(timeout_ms) > 0; }
 

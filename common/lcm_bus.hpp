@@ -38,6 +38,8 @@ class LcmBus final : public Bus {
   int fileno();
   // Dispatches the messages waiting now without blocking; returns how many.
   int handle_ready();
+  // Dispatches one waiting message, if there is one, without blocking; returns whether it did.
+  bool handle_one();
   // Waits up to timeout_ms for one message and dispatches it; returns false on timeout.
   bool handle_timeout(int timeout_ms);
   // Publishes a probe and waits for it to come back; throws with the multicast hint if it
@@ -46,6 +48,8 @@ class LcmBus final : public Bus {
 
   const std::string& url() const { return url_; }
   uint64_t publish_failures() const { return publish_failures_; }
+  // Messages this bus was asked to publish (from the thread that publishes).
+  uint64_t messages_published() const { return messages_published_; }
 
  private:
   class Subscriber;
@@ -56,6 +60,7 @@ class LcmBus final : public Bus {
   std::map<SubscriptionId, std::unique_ptr<Subscriber>> subscribers_;
   SubscriptionId next_id_ = 1;
   uint64_t publish_failures_ = 0;
+  uint64_t messages_published_ = 0;
 };
 
 }  // namespace a3::common

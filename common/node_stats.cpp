@@ -34,14 +34,17 @@ NamedValues executor_timing(const RealTimeExecutor& executor) {
 }
 
 NamedValues lockstep_timing(const LockstepStats& s) {
-  return {{"lockstep_grants", static_cast<double>(s.grants)},
-          {"lockstep_waits", static_cast<double>(s.waits)},
-          {"lockstep_wait_total_s", s.wait_total_s},
-          {"lockstep_wait_max_s", s.wait_max_s},
-          {"lockstep_lag_dropped_s", s.lag_dropped_s},
-          {"achieved_rtf", s.achieved_rtf},
-          {"worst_window_rtf", s.worst_window_rtf},
-          {"wall_s", s.wall_s}};
+  NamedValues timing = {{"lockstep_grants", static_cast<double>(s.grants)},
+                        {"lockstep_rounds", static_cast<double>(s.rounds)},
+                        {"lockstep_waits", static_cast<double>(s.waits)},
+                        {"lockstep_wait_total_s", s.wait_total_s},
+                        {"lockstep_wait_max_s", s.wait_max_s},
+                        {"lockstep_lag_dropped_s", s.lag_dropped_s},
+                        {"achieved_rtf", s.achieved_rtf},
+                        {"worst_window_rtf", s.worst_window_rtf},
+                        {"wall_s", s.wall_s}};
+  for (const auto& [node, held_s] : s.wait_on_s) timing.emplace_back(kLockstepWaitOnPrefix + node + "_s", held_s);
+  return timing;
 }
 
 a3lcm::node_stats_t make_node_stats(const std::string& node, int64_t utime_us, bool final,

@@ -12,6 +12,13 @@
 #include <string>
 
 namespace a3::common {
+namespace {
+
+// Bounded, so that a steady stream of messages cannot starve the wall-clock housekeeping (the
+// socket stays readable; the loop comes back for the rest).
+constexpr int kMaxMessagesPerWake = 64;
+
+}  // namespace
 
 RealTimeExecutor::RealTimeExecutor(const RealTimeClock& clock, LcmBus* bus)
     : clock_(clock), bus_(bus) {
@@ -129,6 +136,14 @@ void RealTimeExecutor::run_due_timers() {
   }
 }
 
+void RealTimeExecutor::run_due_steps() {
+  // The driver moves time one step at a time; each step's timers run before the next.
+  do {
+    run_due_timers();
+    if (driver_ != nullptr) driver_->after_due_timers();
+  } while (!stop_ && driver_ != nullptr && driver_->poll(WallClock::monotonic_now_ns()));
+}
+
 void RealTimeExecutor::run(int64_t end_us) {
   // Wake-ups as close to the deadline as the kernel allows (default slack is 50 us).
   ::prctl(PR_SET_TIMERSLACK, 1UL, 0, 0, 0);
@@ -155,12 +170,13 @@ void RealTimeExecutor::run(int64_t end_us) {
       uint64_t count;
       [[maybe_unused]] const auto n = ::read(wake_fd_, &count, sizeof count);
     }
-    if (ready > 0 && nfds == 2 && (fds[1].revents & POLLIN)) bus_->handle_ready();
-    // The driver moves time one step at a time; each step's timers run before the next.
-    do {
-      run_due_timers();
-      if (driver_ != nullptr) driver_->after_due_timers();
-    } while (!stop_ && driver_ != nullptr && driver_->poll(WallClock::monotonic_now_ns()));
+    if (ready > 0 && nfds == 2 && (fds[1].revents & POLLIN)) {
+      // One message at a time, each followed by the timers it made due: the timers of a grant
+      // run before the messages behind it, which were published at its time (virtual time
+      // orders them so too), whatever the number of messages one wake-up finds.
+      for (int i = 0; i < kMaxMessagesPerWake && !stop_ && bus_->handle_one(); ++i) run_due_steps();
+    }
+    run_due_steps();
     if (housekeeping_ && WallClock::monotonic_now_ns() >= next_housekeeping_ns_) {
       next_housekeeping_ns_ = WallClock::monotonic_now_ns() + housekeeping_period_ns_;
       housekeeping_();

@@ -60,6 +60,7 @@ class RealTimeExecutor final : public Executor {
   void wake();
   std::optional<int64_t> wait_deadline_ns(int64_t end_us) const;
   void run_due_timers();
+  void run_due_steps();
   void record_lateness(double late_us);
 
   const RealTimeClock& clock_;

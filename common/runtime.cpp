@@ -23,9 +23,10 @@ ThreadClock ThreadClock::master(LockstepConfig pacing) {
   return c;
 }
 
-ThreadClock ThreadClock::follower() {
+ThreadClock ThreadClock::follower(bool acknowledges) {
   ThreadClock c;
   c.kind = Kind::kLockstepFollower;
+  c.acknowledges = acknowledges;
   return c;
 }
 
@@ -60,8 +61,15 @@ RealTimeNodeThread::RealTimeNodeThread(Node& node, const ThreadClock& how, const
     executor_->set_clock_driver(pacer_.get());
   } else if (how.kind == ThreadClock::Kind::kLockstepFollower) {
     SteppedClock* clock = stepped_.get();
-    bus_.subscribe<a3lcm::sim_clock_t>(channels::kClock,
-                                       [clock](const a3lcm::sim_clock_t& m, int64_t) { clock->advance_to(m.utime_us); });
+    if (how.acknowledges) {
+      acknowledger_ = std::make_unique<GrantAcknowledger>(*clock, bus_, node_.name());
+      executor_->set_clock_driver(acknowledger_.get());
+    }
+    GrantAcknowledger* ack = acknowledger_.get();
+    bus_.subscribe<a3lcm::sim_clock_t>(channels::kClock, [clock, ack](const a3lcm::sim_clock_t& m, int64_t) {
+      clock->advance_to(m.utime_us);
+      if (ack != nullptr) ack->grant_heard(m.round);
+    });
   }
 }
 

@@ -6,7 +6,8 @@
 //     wall              the wall clock at a real-time factor (free-running, `--sync free`);
 //     lockstep master   a SteppedClock moved by a LockstepPacer on this thread, which grants
 //                       time on A3_CLOCK (the dynamics' thread);
-//     lockstep follower a SteppedClock moved by the A3_CLOCK grants it hears on its bus;
+//     lockstep follower a SteppedClock moved by the A3_CLOCK grants it hears on its bus,
+//                       answering each on A3_CLOCK_ACK when the master waits for it;
 //     lockstep external a SteppedClock moved by the node itself from another transport (the
 //                       flight controller: a3.sim.Clock frames on CAN).
 //   It publishes the node's statistics (node_stats_t on A3_NODE_STATS) every stats period of
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "common/clock.hpp"
+#include "common/grant_acknowledger.hpp"
 #include "common/lcm_bus.hpp"
 #include "common/lockstep_pacer.hpp"
 #include "common/node.hpp"
@@ -48,11 +50,12 @@ struct ThreadClock {
   Kind kind = Kind::kWall;
   const WallClock* wall = nullptr;  // kWall: shared by every node of the run
   LockstepConfig pacing;            // kLockstepMaster
+  bool acknowledges = false;        // kLockstepFollower: answers every grant (GrantAcknowledger)
   double deadline_miss_us = 2000.0;
 
   static ThreadClock free_running(const WallClock& clock);
   static ThreadClock master(LockstepConfig pacing);
-  static ThreadClock follower();
+  static ThreadClock follower(bool acknowledges);
   static ThreadClock external();
 };
 
@@ -87,6 +90,7 @@ class RealTimeNodeThread {
   LcmBus bus_;
   std::unique_ptr<RealTimeExecutor> executor_;
   std::unique_ptr<LockstepPacer> pacer_;
+  std::unique_ptr<GrantAcknowledger> acknowledger_;
   double stats_period_s_ = 1.0;
   std::thread thread_;
   mutable std::mutex failure_mutex_;

@@ -88,8 +88,10 @@ void BridgeNode::start(common::Executor& executor, common::Bus& bus) {
   bus.subscribe<a3lcm::fc_command_t>(config_.command_channel,
                                      [this](const a3lcm::fc_command_t& c, int64_t) { on_command(c); });
   if (config_.forward_sim_clock) {
-    bus.subscribe<a3lcm::sim_clock_t>(common::channels::kClock,
-                                      [this](const a3lcm::sim_clock_t& m, int64_t) { on_grant(m.utime_us); });
+    // A later round of a time is for the ground's followers; the flight controller has it already.
+    bus.subscribe<a3lcm::sim_clock_t>(common::channels::kClock, [this](const a3lcm::sim_clock_t& m, int64_t) {
+      if (m.round == 0) on_grant(m.utime_us);
+    });
   }
   timers_.push_back(executor.schedule_every(kNodeStatusPeriod_us / 2, [this] { update_health(); }));
   common::log_info("bridge", "node " + std::to_string(config_.node_id) + " on " + dronecan_.bus().name() +

@@ -4,6 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "common/node_stats.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -16,6 +21,30 @@ std::string fixed(double v, int digits) {
 
 nlohmann::json timing_of(const NodeStatsRecord& n) {
   return n.stats.contains("timing") ? n.stats["timing"] : nlohmann::json::object();
+}
+
+// lockstep_wait_on_<node>_s timings as {node: s}.
+nlohmann::json lockstep_waits_by_node(const nlohmann::json& timing) {
+  const std::string prefix = common::kLockstepWaitOnPrefix, suffix = "_s";
+  nlohmann::json by_node = nlohmann::json::object();
+  for (const auto& [key, value] : timing.items()) {
+    if (key.size() > prefix.size() + suffix.size() && key.rfind(prefix, 0) == 0 &&
+        key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0) {
+      by_node[key.substr(prefix.size(), key.size() - prefix.size() - suffix.size())] = value;
+    }
+  }
+  return by_node;
+}
+
+// ": fc 1.20 s, tool_server 0.31 s", largest first; "" without a breakdown.
+std::string waits_by_node_text(const nlohmann::json& lockstep) {
+  if (!lockstep.contains("wait_on_s") || !lockstep["wait_on_s"].is_object()) return "";
+  std::vector<std::pair<double, std::string>> waits;
+  for (const auto& [node, s] : lockstep["wait_on_s"].items()) waits.emplace_back(s.get<double>(), node);
+  std::sort(waits.rbegin(), waits.rend());
+  std::string text;
+  for (const auto& [s, node] : waits) text += (text.empty() ? ": " : ", ") + node + " " + fixed(s, 2) + " s";
+  return text;
 }
 
 }  // namespace
@@ -59,9 +88,11 @@ nlohmann::json realtime_report(const RunOptions& o, const RealTimeMeasure& m,
     }
     per_node[name] = node;
     if (t.contains("lockstep_grants")) {
-      lockstep = {{"grants", t["lockstep_grants"]},         {"waits", t["lockstep_waits"]},
+      lockstep = {{"grants", t["lockstep_grants"]},         {"rounds", t.value("lockstep_rounds", 0.0)},
+                  {"waits", t["lockstep_waits"]},
                   {"wait_total_s", t["lockstep_wait_total_s"]}, {"wait_max_s", t["lockstep_wait_max_s"]},
-                  {"lag_dropped_s", t["lockstep_lag_dropped_s"]}, {"worst_window_rtf", t["worst_window_rtf"]}};
+                  {"lag_dropped_s", t["lockstep_lag_dropped_s"]}, {"worst_window_rtf", t["worst_window_rtf"]},
+                  {"wait_on_s", lockstep_waits_by_node(t)}};
     }
     if (name == "dynamics" && n.stats.contains("counters")) {
       stale_steps = n.stats["counters"].value("stale_steps", uint64_t{0});
@@ -112,7 +143,7 @@ std::string realtime_summary(const nlohmann::json& r) {
                      fixed(p99_us * 1e-3, 2) + " ms";
   if (r["lockstep"].is_object()) {
     line += ", lockstep waits " + fixed(r["lockstep"].value("waits", 0.0), 0) + " (" +
-            fixed(r["lockstep"].value("wait_total_s", 0.0), 2) + " s)";
+            fixed(r["lockstep"].value("wait_total_s", 0.0), 2) + " s" + waits_by_node_text(r["lockstep"]) + ")";
   }
   line += ", stale steps " + std::to_string(r.value("stale_steps", uint64_t{0})) + "; contract ";
   const std::string why = realtime_violations(r);

@@ -1,10 +1,12 @@
 // Real-time threads of a rig.
 #include "rigs/core/rig_threads.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "a3lcm/actuator_cmd_t.hpp"
+#include "a3lcm/clock_ack_t.hpp"
 #include "common/channels.hpp"
 
 namespace a3::rigs {
@@ -13,6 +15,11 @@ const char* to_string(Sync sync) { return sync == Sync::kLockstep ? "lockstep" :
 
 int64_t lockstep_quantum_us(const RigConfigs& configs) {
   return std::llround(1e6 / configs.fc.params.control_rate_hz);
+}
+
+const std::vector<std::string>& lockstep_followers() {
+  static const std::vector<std::string> names = {"linkemu", "tool_server", "airspace_monitor", "conversation"};
+  return names;
 }
 
 namespace {
@@ -28,15 +35,26 @@ common::ThreadClock thread_clock(const common::Node* node, const RigNodes& n, co
     pacing.real_time_factor = o.real_time_factor;
     pacing.start_mono_ns = epoch_mono_ns;
     pacing.first_ack_us = pacing.quantum_us;
+    pacing.followers = lockstep_followers();
     how = common::ThreadClock::master(pacing);
   } else if (node == n.fc.get()) {
     how = common::ThreadClock::external();
   } else {
-    how = common::ThreadClock::follower();
+    const auto& followers = lockstep_followers();
+    how = common::ThreadClock::follower(std::find(followers.begin(), followers.end(), node->name()) != followers.end());
   }
   // A deadline miss: a timer later than one control period of wall time.
   how.deadline_miss_us = static_cast<double>(lockstep_quantum_us(cfg)) / o.real_time_factor;
   return how;
+}
+
+// The whole rig in this process: a follower the pacer waits for but nobody runs would stop
+// simulated time at its first grant.
+void check_followers_present(const std::vector<common::Node*>& nodes) {
+  for (const std::string& name : lockstep_followers()) {
+    const bool present = std::any_of(nodes.begin(), nodes.end(), [&](const common::Node* node) { return node->name() == name; });
+    if (!present) throw std::logic_error("lockstep: the follower '" + name + "' is not a node of this rig");
+  }
 }
 
 }  // namespace
@@ -44,6 +62,7 @@ common::ThreadClock thread_clock(const common::Node* node, const RigNodes& n, co
 RigThreads::RigThreads(RigNodes& n, const RigConfigs& cfg, const RunOptions& o, const std::string& lcm_url,
                        int64_t epoch_mono_ns)
     : nodes_(n.in_start_order()) {
+  if (n.dynamics && n.conversation) check_followers_present(nodes_);
   if (o.sync == Sync::kFree) wall_ = std::make_unique<common::WallClock>(o.real_time_factor, epoch_mono_ns);
   for (common::Node* node : nodes_) {
     auto th = std::make_unique<common::RealTimeNodeThread>(*node, thread_clock(node, n, cfg, o, wall_.get(), epoch_mono_ns),
@@ -52,6 +71,11 @@ RigThreads::RigThreads(RigNodes& n, const RigConfigs& cfg, const RunOptions& o, 
       th->bus().subscribe<a3lcm::actuator_cmd_t>(
           common::channels::kActuators,
           [pacer](const a3lcm::actuator_cmd_t& m, int64_t) { pacer->note_ack(m.utime_us); });
+      th->bus().subscribe<a3lcm::clock_ack_t>(
+          common::channels::kClockAck,
+          [pacer](const a3lcm::clock_ack_t& m, int64_t) {
+            pacer->note_follower_ack(m.node, m.utime_us, m.round, m.messages_published);
+          });
     }
     if (node == n.fc.get() && o.sync == Sync::kLockstep) n.fc->follow_sim_clock(th->stepped_clock());
     threads_.push_back(std::move(th));

@@ -3,7 +3,8 @@
 // dynamics' thread is the time master (a LockstepPacer granting one flight-controller period
 // at a time, acknowledged by the A3_ACTUATORS commands the bridge stamps), the flight
 // controller follows the a3.sim.Clock frames the bridge forwards on CAN, and every other node
-// follows the A3_CLOCK grants on its own LCM bus. `a3rig run` (all nodes, or the ground side)
+// follows the A3_CLOCK grants on its own LCM bus, those named by lockstep_followers() answering
+// each on A3_CLOCK_ACK. `a3rig run` (all nodes, or the ground side)
 // and `a3rig node part` (one part) build their threads here, so both run the same way.
 #pragma once
 
@@ -43,5 +44,11 @@ class RigThreads {
 
 // The flight controller's control period: the lockstep quantum.
 int64_t lockstep_quantum_us(const RigConfigs& configs);
+
+// The nodes that answer every lockstep grant before the next goes out (besides the flight
+// controller, whose answer is its actuator command): those whose outputs reach the vehicle or
+// the conversation, so that a starved one delays simulated time instead of acting late in it.
+// The recorder and the LCM log only listen; the bridge is in the flight controller's loop.
+const std::vector<std::string>& lockstep_followers();
 
 }  // namespace a3::rigs

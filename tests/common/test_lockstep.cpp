@@ -4,7 +4,11 @@
 // node statistics' JSON form. Real-time cases assert behaviour with generous bounds.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
+#include <mutex>
+#include <utility>
+#include <vector>
 #include <chrono>
 #include <thread>
 
@@ -44,18 +48,24 @@ struct PacedRig {
   std::thread thread;
 
   PacedRig(double rtf, const std::function<void(LockstepPacer&, int64_t)>& answer)
-      : pacer(clock, bus, config(rtf)) {
+      : PacedRig(rtf, {}, [answer](LockstepPacer& p, const a3lcm::sim_clock_t& m) {
+          if (answer) answer(p, m.utime_us);
+        }) {}
+  PacedRig(double rtf, std::vector<std::string> followers,
+           const std::function<void(LockstepPacer&, const a3lcm::sim_clock_t&)>& answer)
+      : pacer(clock, bus, config(rtf, std::move(followers))) {
     executor.set_clock_driver(&pacer);
     bus.subscribe<a3lcm::sim_clock_t>(channels::kClock, [this, answer](const a3lcm::sim_clock_t& m, int64_t) {
       ++grants_heard;
-      if (answer) answer(pacer, m.utime_us);
+      answer(pacer, m);
     });
   }
-  static LockstepConfig config(double rtf) {
+  static LockstepConfig config(double rtf, std::vector<std::string> followers) {
     LockstepConfig c;
     c.quantum_us = 4000;
     c.real_time_factor = rtf;
     c.first_ack_us = 4000;
+    c.followers = std::move(followers);
     return c;
   }
   void run_for(std::chrono::milliseconds wall) {
@@ -99,6 +109,39 @@ TEST(LockstepPacer, ALateVehicleSlowsSimulatedTimeAndTheWaitsAreCounted) {
   EXPECT_GT(s.wait_total_s, 0.01);
   EXPECT_LT(static_cast<double>(rig.clock.now_us()) * 1e-6, 0.4 * 0.85);
   EXPECT_LT(s.achieved_rtf, 0.85);
+}
+
+TEST(LockstepPacer, ASilentFollowerHoldsSimulatedTime) {
+  // The vehicle answers; the follower "linkemu" never does: not even the first quantum passes.
+  PacedRig rig(1.0, {"linkemu"}, [](LockstepPacer& p, const a3lcm::sim_clock_t& m) { p.note_ack(m.utime_us); });
+  rig.run_for(std::chrono::milliseconds(100));
+  EXPECT_EQ(rig.clock.now_us(), 0);
+  EXPECT_EQ(rig.pacer.stats().grants, 1u);
+}
+
+TEST(LockstepPacer, GrantsATimeAgainWhileAFollowerHasSpokenAtIt) {
+  // The follower publishes one message while it runs what was due at 8 ms: 8 ms is granted
+  // again (round 1) and answered again in silence before 12 ms is granted.
+  std::vector<std::pair<int64_t, int32_t>> heard;
+  std::mutex heard_mutex;
+  PacedRig rig(10.0, {"tool_server"}, [&](LockstepPacer& p, const a3lcm::sim_clock_t& m) {
+    {
+      std::lock_guard<std::mutex> lock(heard_mutex);
+      heard.emplace_back(m.utime_us, m.round);
+    }
+    p.note_ack(m.utime_us);
+    p.note_follower_ack("tool_server", m.utime_us, m.round, m.utime_us >= 8000 ? 1 : 0);
+    p.note_follower_ack("someone_else", m.utime_us + 4000, 0, 5);  // not a follower: ignored
+  });
+  rig.run_for(std::chrono::milliseconds(100));
+  EXPECT_GT(rig.clock.now_us(), 12000);
+  EXPECT_EQ(rig.pacer.stats().rounds, 1u);
+  std::lock_guard<std::mutex> lock(heard_mutex);
+  const auto at = [&](int64_t t, int32_t round) { return std::find(heard.begin(), heard.end(), std::make_pair(t, round)); };
+  ASSERT_NE(at(8000, 1), heard.end());
+  ASSERT_NE(at(12000, 0), heard.end());
+  EXPECT_LT(at(8000, 1), at(12000, 0));
+  EXPECT_EQ(at(4000, 1), heard.end());  // nothing was said at 4 ms
 }
 
 TEST(CounterSet, NamesItsCountersOnce) {

@@ -99,9 +99,10 @@ std::vector<Cell> every_builtin_both_ways() {
 INSTANTIATE_TEST_SUITE_P(BuiltInScenarios, LockstepUnderLoad, ::testing::ValuesIn(every_builtin_both_ways()), cell_name);
 
 // Flies survey-field with --processes at --rtf 4 (the flight, not the freeze, is what takes
-// time) and freezes the flight controller's process (SIGSTOP) for freeze_s of wall time once the
-// vehicle is airborne; returns the episode and the exit status.
-std::pair<json, int> run_with_frozen_fc(const std::string& sync, double freeze_s, const std::string& tag) {
+// time) and freezes the process of one part (SIGSTOP) for freeze_s of wall time once the vehicle
+// is airborne; returns the episode and the exit status.
+std::pair<json, int> run_with_frozen_part(const std::string& part, const std::string& sync, double freeze_s,
+                                          const std::string& tag) {
   const a3::test::TempDir dir(tag);
   const fs::path out = dir.path() / "out";
   RunningRig rig({a3::test::a3rig(), "run", "--processes", "--sync", sync, "--scenario", "survey-field", "--rtf", "4",
@@ -109,15 +110,19 @@ std::pair<json, int> run_with_frozen_fc(const std::string& sync, double freeze_s
                  dir.path() / "output.txt");
   EXPECT_TRUE(rig.wait_for_output("turn  3", 120.0)) << rig.text();
   std::this_thread::sleep_for(std::chrono::seconds(3));  // climbing
-  const pid_t fc = part_of_run(rig.pid, "fc");
-  EXPECT_GT(fc, 0) << rig.text();
-  ::kill(fc, SIGSTOP);
+  const pid_t frozen = part_of_run(rig.pid, part);
+  EXPECT_GT(frozen, 0) << rig.text();
+  ::kill(frozen, SIGSTOP);
   std::this_thread::sleep_for(std::chrono::duration<double>(freeze_s));
-  ::kill(fc, SIGCONT);
+  ::kill(frozen, SIGCONT);
   const int status = rig.wait_exit(400.0);
   std::cout << rig.text().substr(rig.text().size() > 1500 ? rig.text().size() - 1500 : 0) << "\n";
   if (!fs::exists(out / "episode.json")) return {json(), status};
   return {read_json(out / "episode.json"), status};
+}
+
+std::pair<json, int> run_with_frozen_fc(const std::string& sync, double freeze_s, const std::string& tag) {
+  return run_with_frozen_part("fc", sync, freeze_s, tag);
 }
 
 bool has_event(const json& e, const std::string& kind) {
@@ -142,6 +147,30 @@ TEST(LockstepFaults, AFrozenFlightControllerMakesTheLockstepVehicleWait) {
   // The wait is recorded: simulated time stood still while the fc was frozen.
   EXPECT_GT(rt["lockstep"]["wait_max_s"].get<double>(), 1.0) << rt.dump();
   EXPECT_GT(rt["lockstep"]["wait_total_s"].get<double>(), 1.0) << rt.dump();
+}
+
+// The tool server and the airspace monitor (the vehicle part) frozen for 2 s of wall time, 8 s of
+// simulated time at --rtf 4: they answer every grant, so simulated time waits for them and the
+// mission goes as in virtual time, to the tenth of a second, instead of the route going on 8 s late.
+TEST(LockstepFaults, AFrozenToolServerMakesSimulatedTimeWait) {
+  A3_REQUIRE_MULTICAST();
+  const RunOptions virtual_options = a3::test::virtual_run("survey-field", "lockstep-frozen-vehicle");
+  const RunResult v = a3::test::run(virtual_options);
+  const auto [e, status] = run_with_frozen_part("vehicle", "lockstep", 2.0, "lockstep-frozen-vehicle");
+  ASSERT_TRUE(e.is_object());
+  EXPECT_EQ(status, 0);
+  a3::test::expect_same_outcome(outcome_of(v.episode), outcome_of(e));
+  const json& done = e["_rig"]["objectives"]["objectives"];
+  const json& done_virtual = v.episode["_rig"]["objectives"]["objectives"];
+  ASSERT_EQ(done.size(), done_virtual.size());
+  for (std::size_t i = 0; i < done.size(); ++i) {
+    ASSERT_TRUE(done[i]["done_at_s"].is_number() && done_virtual[i]["done_at_s"].is_number())
+        << done[i].dump() << " / virtual " << done_virtual[i].dump();
+    EXPECT_NEAR(done[i]["done_at_s"].get<double>(), done_virtual[i]["done_at_s"].get<double>(), 0.1) << done[i].dump();
+  }
+  const json& waited = e["_rig"]["realtime"]["lockstep"]["wait_on_s"];
+  EXPECT_GT(waited.value("tool_server", 0.0) + waited.value("airspace_monitor", 0.0), 1.5) << waited.dump();
+  fs::remove_all(virtual_options.out_dir);
 }
 
 TEST(LockstepFaults, FreeRunningAFrozenFlightControllerTripsTheMotorFailsafe) {
