@@ -21,7 +21,7 @@ constexpr int kMaxMessagesPerWake = 64;
 }  // namespace
 
 RealTimeExecutor::RealTimeExecutor(const RealTimeClock& clock, LcmBus* bus)
-    : clock_(clock), bus_(bus) {
+    : clock_(clock), bus_(bus), stepped_(dynamic_cast<const SteppedClock*>(&clock) != nullptr) {
   wake_fd_ = ::eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
   if (wake_fd_ < 0) {
     throw std::runtime_error(std::string("RealTimeExecutor: eventfd failed: ") +
@@ -171,10 +171,14 @@ void RealTimeExecutor::run(int64_t end_us) {
       [[maybe_unused]] const auto n = ::read(wake_fd_, &count, sizeof count);
     }
     if (ready > 0 && nfds == 2 && (fds[1].revents & POLLIN)) {
-      // One message at a time, each followed by the timers it made due: the timers of a grant
-      // run before the messages behind it, which were published at its time (virtual time
-      // orders them so too), whatever the number of messages one wake-up finds.
-      for (int i = 0; i < kMaxMessagesPerWake && !stop_ && bus_->handle_one(); ++i) run_due_steps();
+      if (stepped_) {
+        // Lockstep: one message at a time, each followed by the timers it made due, so that the
+        // timers of a grant run before the messages behind it, which were published at its
+        // time (virtual time orders them so too), whatever the number one wake-up finds.
+        for (int i = 0; i < kMaxMessagesPerWake && !stop_ && bus_->handle_one(); ++i) run_due_steps();
+      } else {
+        bus_->handle_ready();  // on the wall clock, time moves on its own: no grant to order
+      }
     }
     run_due_steps();
     if (housekeeping_ && WallClock::monotonic_now_ns() >= next_housekeeping_ns_) {

@@ -65,6 +65,7 @@ class RealTimeExecutor final : public Executor {
 
   const RealTimeClock& clock_;
   LcmBus* bus_;
+  bool stepped_;  // lockstep (a SteppedClock): messages are delivered one at a time
   ClockDriver* driver_ = nullptr;
   int64_t housekeeping_period_ns_ = 0;
   int64_t next_housekeeping_ns_ = 0;

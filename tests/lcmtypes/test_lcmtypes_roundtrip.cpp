@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "a3lcm/actuator_cmd_t.hpp"
+#include "a3lcm/clock_ack_t.hpp"
 #include "a3lcm/edge_compute_reply_t.hpp"
 #include "a3lcm/edge_compute_request_t.hpp"
 #include "a3lcm/episode_event_t.hpp"
@@ -286,6 +287,7 @@ struct Case<a3lcm::sim_clock_t> {
     m.wall_utime_us = kBigTime * 3 + 1;
     m.real_time_factor = 10.0;
     m.achieved_real_time_factor = 9.8765;
+    m.round = 3;
     return m;
   }
   static void expect_equal(const a3lcm::sim_clock_t& a, const a3lcm::sim_clock_t& b) {
@@ -293,6 +295,25 @@ struct Case<a3lcm::sim_clock_t> {
     EXPECT_EQ(a.wall_utime_us, b.wall_utime_us);
     EXPECT_SAME_DOUBLE(a.real_time_factor, b.real_time_factor);
     EXPECT_SAME_DOUBLE(a.achieved_real_time_factor, b.achieved_real_time_factor);
+    EXPECT_EQ(a.round, b.round);
+  }
+};
+
+template <>
+struct Case<a3lcm::clock_ack_t> {
+  static a3lcm::clock_ack_t make() {
+    a3lcm::clock_ack_t m;
+    m.utime_us = kBigTime + 23;
+    m.round = 2;
+    m.messages_published = kBigTime / 7 + 5;
+    m.node = "tool_server";
+    return m;
+  }
+  static void expect_equal(const a3lcm::clock_ack_t& a, const a3lcm::clock_ack_t& b) {
+    EXPECT_EQ(a.utime_us, b.utime_us);
+    EXPECT_EQ(a.round, b.round);
+    EXPECT_EQ(a.messages_published, b.messages_published);
+    EXPECT_EQ(a.node, b.node);
   }
 };
 
@@ -524,7 +545,7 @@ struct Case<a3lcm::traffic_state_t> {
 
 // The types with a round-trip case: add a new type here and a Case<> above.
 using AllTypesTuple =
-    std::tuple<a3lcm::actuator_cmd_t, a3lcm::edge_compute_reply_t, a3lcm::edge_compute_request_t,
+    std::tuple<a3lcm::actuator_cmd_t, a3lcm::clock_ack_t, a3lcm::edge_compute_reply_t, a3lcm::edge_compute_request_t,
                a3lcm::episode_event_t, a3lcm::fc_command_t, a3lcm::fc_status_t,
                a3lcm::link_message_t, a3lcm::link_record_t, a3lcm::network_state_t, a3lcm::node_stats_t,
                a3lcm::payload_event_t, a3lcm::safety_event_t, a3lcm::sim_clock_t,
