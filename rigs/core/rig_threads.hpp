@@ -4,8 +4,8 @@
 // at a time, acknowledged by the A3_ACTUATORS commands the bridge stamps), the flight
 // controller follows the a3.sim.Clock frames the bridge forwards on CAN, and every other node
 // follows the A3_CLOCK grants on its own LCM bus, those named by lockstep_followers() answering
-// each on A3_CLOCK_ACK. `a3rig run` (all nodes, or the ground side)
-// and `a3rig node part` (one part) build their threads here, so both run the same way.
+// each on A3_CLOCK_ACK. `a3rig run` (all nodes, or the ground side) and `a3rig node part` (one
+// part) build their threads here, so both run the same way.
 #pragma once
 
 #include <cstdint>
