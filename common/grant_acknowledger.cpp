@@ -8,8 +8,8 @@
 
 namespace a3::common {
 
-GrantAcknowledger::GrantAcknowledger(const SteppedClock& clock, LcmBus& bus, std::string node)
-    : clock_(clock), bus_(bus), node_(std::move(node)) {}
+GrantAcknowledger::GrantAcknowledger(const SteppedClock& clock, const LcmBus& node_bus, Bus& answers, std::string node)
+    : clock_(clock), node_bus_(node_bus), answers_(answers), node_(std::move(node)) {}
 
 void GrantAcknowledger::after_due_timers() {
   if (!answer_due_) return;
@@ -17,10 +17,9 @@ void GrantAcknowledger::after_due_timers() {
   a3lcm::clock_ack_t ack;
   ack.utime_us = clock_.now_us();
   ack.round = round_;
-  ack.messages_published = static_cast<int64_t>(bus_.messages_published() - answers_sent_);
+  ack.messages_published = static_cast<int64_t>(node_bus_.messages_published());
   ack.node = node_;
-  ++answers_sent_;
-  bus_.publish(channels::kClockAck, ack);
+  answers_.publish(channels::kClockAck, ack);
 }
 
 }  // namespace a3::common

@@ -1,9 +1,10 @@
 // A lockstep follower's answer to the time master (DESIGN.md "Time"): once the timers due at a
 // grant it heard have run, and with them everything they published, it publishes
-// clock_ack_t{utime_us and round of the grant, the messages it has published, node} on
-// A3_CLOCK_ACK. Every grant heard is answered, a repeated one too, so that one lost datagram
-// cannot stall the loop. The follower's executor calls it from its own thread (ClockDriver);
-// it never moves the clock.
+// clock_ack_t{utime_us and round of the grant, the messages its node's bus has published,
+// node} on A3_CLOCK_ACK, on a bus of its own (answers_lcm_url: only the master listens there).
+// Every grant heard is answered, a repeated one too, so that one lost datagram cannot stall the
+// loop. The follower's executor calls it from its own thread (ClockDriver); it never moves the
+// clock.
 #pragma once
 
 #include <cstdint>
@@ -18,8 +19,9 @@ namespace a3::common {
 
 class GrantAcknowledger final : public ClockDriver {
  public:
-  // Both must outlive the acknowledger.
-  GrantAcknowledger(const SteppedClock& clock, LcmBus& bus, std::string node);
+  // All three must outlive the acknowledger: the node's bus (whose publications are counted)
+  // and the bus the answers go out on.
+  GrantAcknowledger(const SteppedClock& clock, const LcmBus& node_bus, Bus& answers, std::string node);
 
   // A grant arrived (a bus callback on the same thread).
   void grant_heard(int32_t round) {
@@ -32,11 +34,11 @@ class GrantAcknowledger final : public ClockDriver {
 
  private:
   const SteppedClock& clock_;
-  LcmBus& bus_;
+  const LcmBus& node_bus_;
+  Bus& answers_;
   std::string node_;
   bool answer_due_ = false;
   int32_t round_ = 0;
-  uint64_t answers_sent_ = 0;
 };
 
 }  // namespace a3::common

@@ -4,8 +4,11 @@
 #include <poll.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <charconv>
 #include <cstdlib>
 #include <stdexcept>
+#include <string_view>
 
 namespace a3::common {
 
@@ -15,6 +18,25 @@ std::string resolve_lcm_url(const std::string& requested) {
     return env;
   }
   return kDefaultLcmUrl;
+}
+
+std::string answers_lcm_url(const std::string& url) {
+  constexpr std::string_view kUdpm = "udpm://";
+  constexpr int kLcmDefaultPort = 7667;  // LCM's port when a udpm URL names none
+  if (url.rfind(kUdpm, 0) != 0) return url;
+  const std::size_t options = std::min(url.find('?'), url.size());
+  const std::size_t colon = url.rfind(':', options);
+  const bool has_port = colon != std::string::npos && colon >= kUdpm.size();
+  const std::string digits = has_port ? url.substr(colon + 1, options - colon - 1) : "";
+  int port = kLcmDefaultPort;
+  if (has_port) {
+    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), port);
+    if (digits.empty() || error != std::errc() || end != digits.data() + digits.size() || port <= 0 || port >= 65535) {
+      throw std::invalid_argument("LCM URL '" + url + "': the port '" + digits + "' is not a number from 1 to 65534");
+    }
+  }
+  const std::size_t group_end = has_port ? colon : options;
+  return url.substr(0, group_end) + ":" + std::to_string(port + 1) + url.substr(options);
 }
 
 std::string lcm_multicast_hint() {

@@ -20,6 +20,13 @@ inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
 // The URL a bus uses: `requested` if not empty, else $LCM_DEFAULT_URL, else kDefaultLcmUrl.
 std::string resolve_lcm_url(const std::string& requested);
 
+// The URL lockstep followers answer the time master's grants on (GrantAcknowledger): for
+// udpm://GROUP:PORT?OPTIONS the same group on the next port, where only the master listens, so
+// that an answer wakes one receiver instead of every node (udpm delivers each datagram to every
+// socket on its port); any other URL: the same one. Throws std::invalid_argument, naming the
+// URL, when a udpm port is not a number below 65535.
+std::string answers_lcm_url(const std::string& url);
+
 // How to fix a host whose multicast loopback is not set up.
 std::string lcm_multicast_hint();
 

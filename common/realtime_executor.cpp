@@ -20,8 +20,8 @@ constexpr int kMaxMessagesPerWake = 64;
 
 }  // namespace
 
-RealTimeExecutor::RealTimeExecutor(const RealTimeClock& clock, LcmBus* bus)
-    : clock_(clock), bus_(bus), stepped_(dynamic_cast<const SteppedClock*>(&clock) != nullptr) {
+RealTimeExecutor::RealTimeExecutor(const RealTimeClock& clock, LcmBus* bus, LcmBus* answers_bus)
+    : clock_(clock), bus_(bus), answers_bus_(answers_bus), stepped_(dynamic_cast<const SteppedClock*>(&clock) != nullptr) {
   wake_fd_ = ::eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
   if (wake_fd_ < 0) {
     throw std::runtime_error(std::string("RealTimeExecutor: eventfd failed: ") +
@@ -144,11 +144,25 @@ void RealTimeExecutor::run_due_steps() {
   } while (!stop_ && driver_ != nullptr && driver_->poll(WallClock::monotonic_now_ns()));
 }
 
+void RealTimeExecutor::deliver(LcmBus& bus) {
+  if (stepped_) {
+    // Lockstep: one message at a time, each followed by the timers it made due, so that the
+    // timers of a grant run before the messages behind it, which were published at its time
+    // (virtual time orders them so too), whatever the number one wake-up finds.
+    for (int i = 0; i < kMaxMessagesPerWake && !stop_ && bus.handle_one(); ++i) run_due_steps();
+  } else {
+    bus.handle_ready();  // on the wall clock, time moves on its own: no grant to order
+  }
+}
+
 void RealTimeExecutor::run(int64_t end_us) {
   // Wake-ups as close to the deadline as the kernel allows (default slack is 50 us).
   ::prctl(PR_SET_TIMERSLACK, 1UL, 0, 0, 0);
-  pollfd fds[2] = {{wake_fd_, POLLIN, 0}, {bus_ != nullptr ? bus_->fileno() : -1, POLLIN, 0}};
-  const nfds_t nfds = bus_ != nullptr ? 2 : 1;
+  // The wake-up eventfd, then the buses there are (a negative fd is ignored by ppoll).
+  pollfd fds[3] = {{wake_fd_, POLLIN, 0},
+                   {bus_ != nullptr ? bus_->fileno() : -1, POLLIN, 0},
+                   {answers_bus_ != nullptr ? answers_bus_->fileno() : -1, POLLIN, 0}};
+  constexpr nfds_t nfds = 3;
 
   while (!stop_) {
     const std::optional<int64_t> deadline_ns = wait_deadline_ns(end_us);
@@ -170,16 +184,8 @@ void RealTimeExecutor::run(int64_t end_us) {
       uint64_t count;
       [[maybe_unused]] const auto n = ::read(wake_fd_, &count, sizeof count);
     }
-    if (ready > 0 && nfds == 2 && (fds[1].revents & POLLIN)) {
-      if (stepped_) {
-        // Lockstep: one message at a time, each followed by the timers it made due, so that the
-        // timers of a grant run before the messages behind it, which were published at its
-        // time (virtual time orders them so too), whatever the number one wake-up finds.
-        for (int i = 0; i < kMaxMessagesPerWake && !stop_ && bus_->handle_one(); ++i) run_due_steps();
-      } else {
-        bus_->handle_ready();  // on the wall clock, time moves on its own: no grant to order
-      }
-    }
+    if (ready > 0 && (fds[1].revents & POLLIN)) deliver(*bus_);
+    if (ready > 0 && (fds[2].revents & POLLIN)) deliver(*answers_bus_);
     run_due_steps();
     if (housekeeping_ && WallClock::monotonic_now_ns() >= next_housekeeping_ns_) {
       next_housekeeping_ns_ = WallClock::monotonic_now_ns() + housekeeping_period_ns_;

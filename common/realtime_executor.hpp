@@ -24,8 +24,9 @@ namespace a3::common {
 
 class RealTimeExecutor final : public Executor {
  public:
-  // bus may be nullptr (timers only). Both must outlive the executor.
-  explicit RealTimeExecutor(const RealTimeClock& clock, LcmBus* bus = nullptr);
+  // bus may be nullptr (timers only); answers_bus, a second bus it listens to (the lockstep
+  // master hears its followers' answers there), may be nullptr. All must outlive the executor.
+  explicit RealTimeExecutor(const RealTimeClock& clock, LcmBus* bus = nullptr, LcmBus* answers_bus = nullptr);
   ~RealTimeExecutor() override;
   RealTimeExecutor(const RealTimeExecutor&) = delete;
   RealTimeExecutor& operator=(const RealTimeExecutor&) = delete;
@@ -61,10 +62,12 @@ class RealTimeExecutor final : public Executor {
   std::optional<int64_t> wait_deadline_ns(int64_t end_us) const;
   void run_due_timers();
   void run_due_steps();
+  void deliver(LcmBus& bus);
   void record_lateness(double late_us);
 
   const RealTimeClock& clock_;
   LcmBus* bus_;
+  LcmBus* answers_bus_;
   bool stepped_;  // lockstep (a SteppedClock): messages are delivered one at a time
   ClockDriver* driver_ = nullptr;
   int64_t housekeeping_period_ns_ = 0;

@@ -3,6 +3,7 @@
 
 #include <exception>
 
+#include "a3lcm/clock_ack_t.hpp"
 #include "a3lcm/sim_clock_t.hpp"
 #include "common/channels.hpp"
 #include "common/node_stats.hpp"
@@ -54,15 +55,23 @@ const RealTimeClock* pick_clock(const ThreadClock& how, std::unique_ptr<SteppedC
 
 RealTimeNodeThread::RealTimeNodeThread(Node& node, const ThreadClock& how, const std::string& lcm_url)
     : node_(node), clock_(pick_clock(how, stepped_)), bus_(lcm_url, clock_) {
-  executor_ = std::make_unique<RealTimeExecutor>(*clock_, &bus_);
+  const bool master = how.kind == ThreadClock::Kind::kLockstepMaster;
+  const bool answers = master || (how.kind == ThreadClock::Kind::kLockstepFollower && how.acknowledges);
+  // The master listens to its followers' answers, which they publish, on a bus of their own.
+  if (answers) answers_bus_ = std::make_unique<LcmBus>(answers_lcm_url(bus_.url()), clock_);
+  executor_ = std::make_unique<RealTimeExecutor>(*clock_, &bus_, master ? answers_bus_.get() : nullptr);
   executor_->set_deadline_miss_us(how.deadline_miss_us);
-  if (how.kind == ThreadClock::Kind::kLockstepMaster) {
+  if (master) {
     pacer_ = std::make_unique<LockstepPacer>(*stepped_, bus_, how.pacing);
     executor_->set_clock_driver(pacer_.get());
+    LockstepPacer* pacer = pacer_.get();
+    answers_bus_->subscribe<a3lcm::clock_ack_t>(channels::kClockAck, [pacer](const a3lcm::clock_ack_t& m, int64_t) {
+      pacer->note_follower_ack(m.node, m.utime_us, m.round, m.messages_published);
+    });
   } else if (how.kind == ThreadClock::Kind::kLockstepFollower) {
     SteppedClock* clock = stepped_.get();
     if (how.acknowledges) {
-      acknowledger_ = std::make_unique<GrantAcknowledger>(*clock, bus_, node_.name());
+      acknowledger_ = std::make_unique<GrantAcknowledger>(*clock, bus_, *answers_bus_, node_.name());
       executor_->set_clock_driver(acknowledger_.get());
     }
     GrantAcknowledger* ack = acknowledger_.get();

@@ -7,7 +7,8 @@
 //     lockstep master   a SteppedClock moved by a LockstepPacer on this thread, which grants
 //                       time on A3_CLOCK (the dynamics' thread);
 //     lockstep follower a SteppedClock moved by the A3_CLOCK grants it hears on its bus,
-//                       answering each on A3_CLOCK_ACK when the master waits for it;
+//                       answering each on A3_CLOCK_ACK when the master waits for it (on
+//                       answers_lcm_url, where only the master listens);
 //     lockstep external a SteppedClock moved by the node itself from another transport (the
 //                       flight controller: a3.sim.Clock frames on CAN).
 //   It publishes the node's statistics (node_stats_t on A3_NODE_STATS) every stats period of
@@ -88,6 +89,7 @@ class RealTimeNodeThread {
   std::unique_ptr<SteppedClock> stepped_;
   const RealTimeClock* clock_;
   LcmBus bus_;
+  std::unique_ptr<LcmBus> answers_bus_;  // lockstep: the followers' answers (answers_lcm_url)
   std::unique_ptr<RealTimeExecutor> executor_;
   std::unique_ptr<LockstepPacer> pacer_;
   std::unique_ptr<GrantAcknowledger> acknowledger_;

@@ -26,9 +26,10 @@ inline std::string shared_missing_message(const std::filesystem::path& what) {
 }
 
 // An LCM UDP multicast URL on a port of this test process's own (from its pid), so test programs
-// running side by side (ctest -j) or a user's rig never hear each other's messages.
+// running side by side (ctest -j) or a user's rig never hear each other's messages. An even
+// port: the next one carries the lockstep answers (answers_lcm_url).
 inline std::string private_udpm_url() {
-  return "udpm://239.255.76.67:" + std::to_string(27668 + ::getpid() % 20000) + "?ttl=0";
+  return "udpm://239.255.76.67:" + std::to_string(27668 + 2 * (::getpid() % 10000)) + "?ttl=0";
 }
 
 }  // namespace a3::test

@@ -153,11 +153,11 @@ std::vector<RigPart> all_parts() {
 
 // A run's own LCM port on the usual multicast group (the loopback route covers the group, any
 // port), so that two runs on one host never hear each other; an explicit URL or
-// $LCM_DEFAULT_URL wins.
+// $LCM_DEFAULT_URL wins. An even port: the next one carries the lockstep answers.
 std::string private_lcm_url(const std::string& requested) {
   if (!requested.empty()) return requested;
   if (const char* env = std::getenv("LCM_DEFAULT_URL"); env != nullptr && *env != '\0') return env;
-  return "udpm://239.255.76.67:" + std::to_string(7668 + ::getpid() % 20000) + "?ttl=0";
+  return "udpm://239.255.76.67:" + std::to_string(7668 + 2 * (::getpid() % 10000)) + "?ttl=0";
 }
 
 int64_t unix_now_us() {

@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include "a3lcm/actuator_cmd_t.hpp"
-#include "a3lcm/clock_ack_t.hpp"
 #include "common/channels.hpp"
 
 namespace a3::rigs {
@@ -71,11 +70,6 @@ RigThreads::RigThreads(RigNodes& n, const RigConfigs& cfg, const RunOptions& o, 
       th->bus().subscribe<a3lcm::actuator_cmd_t>(
           common::channels::kActuators,
           [pacer](const a3lcm::actuator_cmd_t& m, int64_t) { pacer->note_ack(m.utime_us); });
-      th->bus().subscribe<a3lcm::clock_ack_t>(
-          common::channels::kClockAck,
-          [pacer](const a3lcm::clock_ack_t& m, int64_t) {
-            pacer->note_follower_ack(m.node, m.utime_us, m.round, m.messages_published);
-          });
     }
     if (node == n.fc.get() && o.sync == Sync::kLockstep) n.fc->follow_sim_clock(th->stepped_clock());
     threads_.push_back(std::move(th));

@@ -54,6 +54,30 @@ TEST(ResolveLcmUrl, HonoursLcmDefaultUrl) {
   EXPECT_EQ(bus.url(), "memq://") << "LcmBus() uses LCM_DEFAULT_URL like every LCM tool";
 }
 
+TEST(AnswersLcmUrl, UdpmAnswersOnTheNextPortOfTheSameGroup) {
+  EXPECT_EQ(answers_lcm_url("udpm://239.255.76.67:7668?ttl=0"), "udpm://239.255.76.67:7669?ttl=0");
+  EXPECT_EQ(answers_lcm_url("udpm://239.255.76.67:7681"), "udpm://239.255.76.67:7682");
+  EXPECT_EQ(answers_lcm_url("udpm://239.255.76.67?ttl=0&recv_buf_size=2097152"),
+            "udpm://239.255.76.67:7668?ttl=0&recv_buf_size=2097152")
+      << "no port: LCM's 7667, answered on 7668";
+}
+
+TEST(AnswersLcmUrl, OtherTransportsAnswerOnTheirOwnUrl) {
+  EXPECT_EQ(answers_lcm_url("memq://"), "memq://");
+  EXPECT_EQ(answers_lcm_url("file:///tmp/x.lcmlog?mode=w"), "file:///tmp/x.lcmlog?mode=w");
+}
+
+TEST(AnswersLcmUrl, ABadPortIsNamed) {
+  for (const char* url : {"udpm://239.255.76.67:76x8?ttl=0", "udpm://239.255.76.67:65535", "udpm://239.255.76.67:"}) {
+    try {
+      answers_lcm_url(url);
+      ADD_FAILURE() << url << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(url), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(ResolveLcmUrl, DefaultIsUdpmWithTtlZero) {
   {
     test::ScopedEnv unset("LCM_DEFAULT_URL", std::nullopt);
