@@ -34,6 +34,17 @@ LinkEmulatorConfig validated(LinkEmulatorConfig config) {
   return config;
 }
 
+// How far ahead of this node's clock a sender's send time is believed (ingress_time_us).
+constexpr int64_t kMaxSenderLead_us = 100'000;
+
+// A message enters the link when it was sent, or when it is heard if that is later. In lockstep
+// a sender's datagram can reach this node before the master's grant of its send time does (they
+// come from different sockets): one quantum early, and its send time puts it where virtual time
+// does. Bounded, so that a sender whose clock is wrong cannot hold a message back for long.
+int64_t ingress_time_us(int64_t heard_us, int64_t sent_us) {
+  return std::clamp(sent_us, heard_us, heard_us + kMaxSenderLead_us);
+}
+
 }  // namespace
 
 LinkEmulatorNode::LinkEmulatorNode(LinkEmulatorConfig config, const SliceProfiles& profiles)
@@ -231,7 +242,7 @@ void LinkEmulatorNode::on_link_bytes(Direction& d, const uint8_t* data, std::siz
     return;
   }
 
-  const TransmitOutcome out = d.transmitter.transmit(now_us, size_bytes, state);
+  const TransmitOutcome out = d.transmitter.transmit(ingress_time_us(now_us, message.sent_utime_us), size_bytes, state);
   a3lcm::link_record_t r{};
   r.utime_us = now_us;
   r.direction = d.name;

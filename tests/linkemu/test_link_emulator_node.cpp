@@ -82,6 +82,32 @@ TEST(LinkEmulatorNode, RelaysBothDirectionsWithTheModelsTiming) {
   EXPECT_EQ(node.stats().up.pending, 0u);
 }
 
+// In lockstep a datagram can be heard one quantum before the grant of the time it was sent at:
+// it enters the link at its send time (up to 100 ms ahead), never before it is heard.
+TEST(LinkEmulatorNode, AMessageEntersTheLinkAtItsSendTimeIfThatIsLaterThanWhenItIsHeard) {
+  LinkEmulatorNode node(config_with_trace(make_state(Slice::kEmbb, 20, 0, 0, 100, 0.5)));
+  ClientNode client;
+  const std::vector<int64_t> sent_us = {1 * kSecond + 4 * kMs, 2 * kSecond + 60 * kSecond, 3 * kSecond - 500 * kMs};
+  for (std::size_t i = 0; i < sent_us.size(); ++i) {
+    client.at(static_cast<int64_t>(i + 1) * kSecond, [&sent_us, i](common::Executor& executor, common::Bus& bus) {
+      a3lcm::link_message_t m = make_message(static_cast<int64_t>(i + 1), "agent", 1000);
+      m.utime_us = executor.clock().now_us();
+      m.sent_utime_us = sent_us[i];
+      bus.publish(LinkChannels{}.up_tx, m);
+    });
+  }
+  run(node, client, 5 * kSecond);
+
+  ASSERT_EQ(client.up_rx.size(), 3u);
+  const int64_t transit_us = 80 + 20 * kMs;  // 1000 B at 100 Mbps, then 20 ms
+  EXPECT_EQ(client.up_rx[0].recv_us, 1 * kSecond + 4 * kMs + transit_us) << "sent 4 ms after it was heard";
+  EXPECT_EQ(client.up_rx[1].recv_us, 2 * kSecond + 100 * kMs + transit_us) << "a send time 60 s ahead: 100 ms at most";
+  EXPECT_EQ(client.up_rx[2].recv_us, 3 * kSecond + transit_us) << "sent before it was heard: enters when heard";
+  ASSERT_EQ(client.records.size(), 3u);
+  EXPECT_EQ(client.records[0].utime_us, 1 * kSecond) << "the record says when it was heard";
+  EXPECT_EQ(client.records[0].sent_utime_us, 1 * kSecond + 4 * kMs);
+}
+
 TEST(LinkEmulatorNode, FiveMegabyteImageOnMmtcTakesSecondsAndDelaysWhatFollowsOnly) {
   LinkEmulatorNode node(config_with_trace(make_state(Slice::kMmtc, 50, 0, 0, 2.3, 0.7)));
   ClientNode client;
