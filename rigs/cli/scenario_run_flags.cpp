@@ -40,7 +40,8 @@ void add_scenario_run_flags(CLI::App& cmd, ScenarioRunFlags& f) {
       ->transform(CLI::CheckedTransformer(std::map<std::string, Sync>{{"lockstep", Sync::kLockstep}, {"free", Sync::kFree}}));
   cmd.add_option("--lcm-url", o.lcm_url,
                  "real time: LCM URL (default $LCM_DEFAULT_URL, else a port of its own on udpm://239.255.76.67, "
-                 "ttl=0, printed at the start: give it to lcm-spy)");
+                 "ttl=0, printed at the start: give it to lcm-spy; lockstep also uses the next port, for the ground "
+                 "nodes' answers to the time master)");
   cmd.add_option("--can", o.can,
                  "real time: the CAN bus between bridge and flight controller: userspace (a private bus, default), "
                  "or an interface such as vcan0 or can0 (SocketCAN)");
