@@ -17,9 +17,9 @@ namespace {
 
 constexpr double kServerLatency_s = 0.25;
 // 2: on this project's 2-core build machine, beside another real-time test under `ctest -j2`,
-// the rig in threads reached only 3.5 of --rtf 4 once its ground nodes answered every lockstep
-// grant (the run then says realtime_violated, as it must); 2 keeps real time with margin, so
-// the test checks the agent's latency, not the host's speed.
+// the rig in threads once reached only 3.5 of --rtf 4 (while the lockstep answers still shared
+// the rig's LCM port; the run then says realtime_violated, as it must); 2 keeps real time with
+// margin, so the test checks the agent's latency, not the host's speed.
 constexpr double kRealTimeFactor = 2.0;
 
 
