@@ -8,9 +8,10 @@
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
-#include <thread>
 
 #include <unistd.h>
+
+#include "common/poll_thread.hpp"
 
 namespace a3::rigs {
 
@@ -33,29 +34,18 @@ inline void install_stop_signals() {
 inline bool stop_requested() { return stop_signal_count().load() > 0; }
 
 // Installs the handlers and, while it lives, sets `stop` once a stop is requested (polled every
-// 50 ms on a thread of its own: a signal handler may only touch the counter).
+// 50 ms on a thread of its own: a signal handler may only touch the counter). It ends at once
+// when it goes.
 class StopWatcher {
  public:
-  explicit StopWatcher(std::atomic<bool>& stop) : stop_(stop) {
-    install_stop_signals();
-    thread_ = std::thread([this] {
-      while (!finished_) {
-        if (stop_requested()) stop_ = true;
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
-      }
-    });
-  }
-  ~StopWatcher() {
-    finished_ = true;
-    thread_.join();
-  }
-  StopWatcher(const StopWatcher&) = delete;
-  StopWatcher& operator=(const StopWatcher&) = delete;
+  explicit StopWatcher(std::atomic<bool>& stop) : stop_(stop) { install_stop_signals(); }
 
  private:
   std::atomic<bool>& stop_;
-  std::atomic<bool> finished_{false};
-  std::thread thread_;
+  common::PollThread thread_{std::chrono::milliseconds(50), [this] {
+                               if (stop_requested()) stop_ = true;
+                               return false;
+                             }};
 };
 
 }  // namespace a3::rigs

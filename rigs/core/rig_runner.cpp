@@ -15,6 +15,7 @@
 #include "bridge/can/can_bus_factory.hpp"
 #include "bridge/can/userspace_bus_folder.hpp"
 #include "bridge/can/virtual_can_bus.hpp"
+#include "common/poll_thread.hpp"
 #include "common/runtime.hpp"
 #include "linkemu/link_emulator_node.hpp"
 #include "rigs/core/agent_outcome.hpp"
@@ -177,26 +178,14 @@ void record_interrupted_turn(RigNodes& n) {
 
 // Virtual time runs the agent in place, on this thread: a watcher stops its decision on Ctrl-C
 // so that the loop below gets to see the stop.
-class InterruptWatcher {
- public:
-  InterruptWatcher(const std::atomic<bool>* stop, RigNodes& n) {
-    if (stop == nullptr || !n.conversation) return;
-    thread_ = std::thread([this, stop, &n] {
-      while (!done_ && !stop->load()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
-      if (!done_) n.conversation->interrupt();
-    });
-  }
-  ~InterruptWatcher() {
-    done_ = true;
-    if (thread_.joinable()) thread_.join();
-  }
-  InterruptWatcher(const InterruptWatcher&) = delete;
-  InterruptWatcher& operator=(const InterruptWatcher&) = delete;
-
- private:
-  std::atomic<bool> done_{false};
-  std::thread thread_;
-};
+std::unique_ptr<common::PollThread> watch_for_interrupt(const std::atomic<bool>* stop, RigNodes& n) {
+  if (stop == nullptr || !n.conversation) return nullptr;
+  return std::make_unique<common::PollThread>(std::chrono::milliseconds(20), [stop, &n] {
+    if (!stop->load()) return false;
+    n.conversation->interrupt();
+    return true;
+  });
+}
 
 RunResult run_virtual(const Scenario& s, const RunOptions& o, const RigConfigs& cfg, const ProgressFn& progress,
                       const std::atomic<bool>* stop) {
@@ -211,7 +200,7 @@ RunResult run_virtual(const Scenario& s, const RunOptions& o, const RigConfigs& 
   Reporter report{progress};
   std::string status;
   double t = 0.0, dialogue_end_s = -1.0, crash_s = -1.0;
-  const InterruptWatcher interrupt_watcher(stop, n);
+  const auto interrupt_watcher = watch_for_interrupt(stop, n);
   try {
     while (status.empty()) {
       t += 0.5;
