@@ -2,6 +2,7 @@
 #include "common/virtual_bus.hpp"
 
 #include <algorithm>
+#include <exception>
 
 namespace a3::common {
 
@@ -13,19 +14,15 @@ bool VirtualBus::publish_raw(const std::string& channel, const uint8_t* data, st
   ++published_;
   const auto it = by_channel_.find(channel);
   if (it == by_channel_.end() || it->second.empty()) return true;
-  const std::vector<SubscriptionId>& recipients = it->second;
-  const uint32_t message = store_message(channel, data, size, recipients.size());
-  const int64_t now_us = executor_.clock().now_us();
-  for (const SubscriptionId id : recipients) {
-    // Events at one time run in the order scheduled, so each one delivers the oldest delivery.
-    const TimerId event = executor_.schedule_at(now_us, [this] { deliver_next(); });
-    push_delivery(Delivery{id, message, event});
-  }
+  const uint32_t message = store_message(channel, data, size, it->second);
+  // Events at one time run in the order scheduled, so each one delivers the oldest message.
+  const TimerId event = executor_.schedule_at(executor_.clock().now_us(), [this] { deliver_next(); });
+  push_delivery(Delivery{message, event});
   return true;
 }
 
-uint32_t VirtualBus::store_message(const std::string& channel, const uint8_t* data,
-                                   std::size_t size, std::size_t deliveries) {
+uint32_t VirtualBus::store_message(const std::string& channel, const uint8_t* data, std::size_t size,
+                                   const std::vector<SubscriptionId>& recipients) {
   uint32_t index = 0;
   if (free_messages_.empty()) {
     index = static_cast<uint32_t>(messages_.size());
@@ -37,20 +34,24 @@ uint32_t VirtualBus::store_message(const std::string& channel, const uint8_t* da
   Message& message = *messages_[index];
   message.channel = channel;
   message.bytes.assign(data, data + size);
-  message.deliveries_left = deliveries;
+  message.recipients.assign(recipients.begin(), recipients.end());
   return index;
 }
 
 void VirtualBus::deliver_next() {
   const Delivery delivery = pop_delivery();
-  // Released after the handler (which may publish): its bytes stay put while it reads them.
-  try {
-    hand_to_subscriber(delivery.subscriber, *messages_[delivery.message]);
-  } catch (...) {
-    release_message(delivery.message);
-    throw;
+  // Released after the last handler (which may publish): its bytes stay put while they read them.
+  const Message& message = *messages_[delivery.message];
+  std::exception_ptr failure;
+  for (const SubscriptionId subscriber : message.recipients) {
+    try {
+      hand_to_subscriber(subscriber, message);
+    } catch (...) {
+      if (!failure) failure = std::current_exception();
+    }
   }
-  release_message(delivery.message);
+  free_messages_.push_back(delivery.message);
+  if (failure) std::rethrow_exception(failure);
 }
 
 void VirtualBus::hand_to_subscriber(SubscriptionId subscriber, const Message& message) {
@@ -64,10 +65,6 @@ void VirtualBus::hand_to_subscriber(SubscriptionId subscriber, const Message& me
     }
   } delivering(*this);
   (*handler)(message.channel, message.bytes.data(), message.bytes.size(), executor_.clock().now_us());
-}
-
-void VirtualBus::release_message(uint32_t index) {
-  if (--messages_[index]->deliveries_left == 0) free_messages_.push_back(index);
 }
 
 void VirtualBus::push_delivery(const Delivery& delivery) {

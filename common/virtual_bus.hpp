@@ -1,11 +1,15 @@
-// In-process bus for the virtual-time runtime: a publication is delivered to each
-// subscriber as a scheduler event at the current virtual time (after the events already
-// due then), carrying a copy of the LCM-encoded bytes. Deterministic FIFO per channel.
-// Allocation-free in steady state: copies go to reused message buffers, deliveries wait in
-// a reused ring in the order their events run, and each event's callback holds only `this`.
+// In-process bus for the virtual-time runtime: a publication is one scheduler event at the
+// current virtual time (after the events already due then), which hands a copy of the
+// LCM-encoded bytes to each of the channel's subscribers of that moment, in subscription order.
+// Deterministic FIFO per channel. A handler's own publications and timers come after the
+// message's last delivery, as they would with an event per delivery; a stop requested by a
+// handler takes effect after it. A handler that throws does not keep the message from the
+// others: its exception leaves the event after the message's last delivery.
+// Allocation-free in steady state: copies go to reused message buffers, messages wait in a
+// reused ring in the order their events run, and each event's callback holds only `this`.
 // The ring relies on every delivery event being scheduled at the executor's current time
 // (so they run in the order scheduled) and on nothing but the bus's destructor cancelling
-// one (unsubscribe leaves the event, which then delivers nothing).
+// one (unsubscribe leaves the event, which then delivers nothing to that subscriber).
 // The executor must outlive the bus (the bus cancels its pending deliveries when it goes).
 // Subscribers are found by index (ids are handed out in order); a handler unsubscribed while
 // a delivery runs is kept until the delivery ends, as it may be the one running.
@@ -42,19 +46,17 @@ class VirtualBus final : public Bus {
   struct Message {
     std::string channel;
     std::vector<uint8_t> bytes;
-    std::size_t deliveries_left = 0;
+    std::vector<SubscriptionId> recipients;  // the channel's subscribers when it was published
   };
   struct Delivery {
-    SubscriptionId subscriber;
     uint32_t message;  // index into messages_
     TimerId event;
   };
 
   uint32_t store_message(const std::string& channel, const uint8_t* data, std::size_t size,
-                         std::size_t deliveries);
+                         const std::vector<SubscriptionId>& recipients);
   void deliver_next();
   void hand_to_subscriber(SubscriptionId subscriber, const Message& message);
-  void release_message(uint32_t index);
   void push_delivery(const Delivery& delivery);
   Delivery pop_delivery();
 

@@ -76,6 +76,24 @@ constexpr std::array<std::array<StuffEntry, 256>, 8> make_stuff_table() {
 }
 constexpr auto kStuffTable = make_stuff_table();
 
+// Stuff bits in the last 1..7 bits of a stream: kTailStuff[count - 1][state][bits], the bits
+// right-aligned. The state after them is not needed, as nothing follows.
+constexpr std::array<std::array<std::array<uint8_t, 128>, 8>, 7> make_tail_stuff_table() {
+  std::array<std::array<std::array<uint8_t, 128>, 8>, 7> table{};
+  for (unsigned count = 1; count <= 7; ++count) {
+    for (unsigned state = 0; state < 8; ++state) {
+      for (unsigned bits = 0; bits < (1u << count); ++bits) {
+        unsigned stuff = 0;
+        uint8_t s = static_cast<uint8_t>(state);
+        for (unsigned i = count; i-- > 0;) s = stuff_step(s, (bits >> i) & 1u, stuff);
+        table[count - 1][state][bits] = static_cast<uint8_t>(stuff);
+      }
+    }
+  }
+  return table;
+}
+constexpr auto kTailStuff = make_tail_stuff_table();
+
 // Counts the stuff bits of a bit stream pushed in pieces of up to 56 bits, MSB first.
 class StuffCounter {
  public:
@@ -99,10 +117,10 @@ class StuffCounter {
       stuff_bits_ += e.stuff_bits;
     }
   }
-  unsigned finish() {
-    for (unsigned i = pending_; i-- > 0;) state_ = stuff_step(state_, (acc_ >> i) & 1u, stuff_bits_);
-    pending_ = 0;
-    return stuff_bits_;
+  // The stuff bits of the whole stream; nothing may be pushed after it.
+  unsigned finish() const {
+    if (pending_ == 0) return stuff_bits_;
+    return stuff_bits_ + kTailStuff[pending_ - 1][state_][acc_ & ((1u << pending_) - 1)];
   }
 
  private:

@@ -50,6 +50,9 @@ struct VirtualCanBus::Impl {
   // small enough for std::function to hold without allocating.
   common::TimerId arbitration_timer = 0;
   common::TimerId finish_timer = 0;
+  // A bit's time when the bit rate is a whole number of bits per second dividing 1e9 (1 Mbit/s:
+  // 1000 ns), else 0. Then bits_ns's product is what the rounded division gives (both exact).
+  int64_t ns_per_bit = 0;
 
   Impl(common::Executor& e, VirtualCanBusConfig c) : executor(e), config(c) {
     if (!(config.bit_rate_bps >= 1000.0 && config.bit_rate_bps <= 10e6)) {
@@ -58,6 +61,10 @@ struct VirtualCanBus::Impl {
     }
     if (config.tx_queue_frames == 0) {
       throw std::invalid_argument("VirtualCanBus: tx_queue_frames must be at least 1");
+    }
+    const double rate = config.bit_rate_bps;
+    if (rate == std::floor(rate) && 1'000'000'000 % static_cast<int64_t>(rate) == 0) {
+      ns_per_bit = 1'000'000'000 / static_cast<int64_t>(rate);
     }
   }
   ~Impl() {
@@ -69,6 +76,7 @@ struct VirtualCanBus::Impl {
   int64_t now_ns() const { return executor.clock().now_us() * 1000; }
 
   int64_t bits_ns(unsigned bits) const {
+    if (ns_per_bit != 0) return ns_per_bit * bits;
     return static_cast<int64_t>(std::llround(static_cast<double>(bits) * 1e9 / config.bit_rate_bps));
   }
   int64_t frame_ns(const CanFrame& frame) const { return bits_ns(can_frame_bits(frame, config.stuffing)); }

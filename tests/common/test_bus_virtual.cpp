@@ -1,8 +1,8 @@
 // The typed Bus wrapper on VirtualBus: delivery through the scheduler at the current virtual
 // time, FIFO per channel, channel isolation, unsubscribe, copies of the bytes, and messages
 // that do not decode dropped and counted (never thrown into the scheduler). The raw bus:
-// one order across channels, a handler that publishes or throws, a bus destroyed with
-// deliveries pending.
+// one order across channels, one event per message, a handler that publishes or throws, a bus
+// destroyed with deliveries pending.
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -276,6 +276,58 @@ TEST_F(VirtualBusTest, AHandlerThatThrowsLeavesTheOtherDeliveriesInOrder) {
   EXPECT_EQ(tags, (std::vector<int>{1, 2, 3, 4, 5}));
 }
 
+// One event hands a message to all its subscribers: what a handler publishes or schedules at
+// that time comes after the message's last delivery, and a stop it requests leaves the other
+// subscribers served.
+TEST_F(VirtualBusTest, AMessageIsOneEventForAllItsSubscribers) {
+  std::vector<std::string> order;
+  bus_.subscribe_raw("A", [&](const std::string&, const uint8_t* data, std::size_t, int64_t) {
+    order.push_back("first:" + std::to_string(data[0]));
+    if (data[0] == 1) {
+      const auto reply = tagged(2, 4);
+      bus_.publish_raw("A", reply.data(), reply.size());
+      scheduler_.schedule_at(scheduler_.clock().now_us(), [&] { order.push_back("timer"); });
+      scheduler_.request_stop();
+    }
+  });
+  bus_.subscribe_raw("A", [&](const std::string&, const uint8_t* data, std::size_t, int64_t) {
+    order.push_back("second:" + std::to_string(data[0]));
+  });
+  const auto bytes = tagged(1, 4);
+  bus_.publish_raw("A", bytes.data(), bytes.size());
+  EXPECT_EQ(scheduler_.pending(), 1u);
+  EXPECT_EQ(scheduler_.run_until(0), 1u) << "the stop ends the run after the message's event";
+  EXPECT_EQ(order, (std::vector<std::string>{"first:1", "second:1"}));
+  scheduler_.run_until(0);
+  EXPECT_EQ(order, (std::vector<std::string>{"first:1", "second:1", "first:2", "second:2", "timer"}));
+}
+
+// A subscriber that throws does not keep the message from the ones after it; the exception
+// leaves the event once they all had it.
+TEST_F(VirtualBusTest, AThrowingSubscriberLeavesTheMessageToTheOthers) {
+  std::vector<std::string> got;
+  bus_.subscribe_raw("A", [&](const std::string&, const uint8_t* data, std::size_t, int64_t) {
+    got.push_back("x" + std::to_string(data[0]));
+    throw std::runtime_error("x fails");
+  });
+  bus_.subscribe_raw("A", [&](const std::string&, const uint8_t* data, std::size_t, int64_t) {
+    got.push_back("y" + std::to_string(data[0]));
+    throw std::logic_error("y fails too");
+  });
+  bus_.subscribe_raw("A", [&](const std::string&, const uint8_t* data, std::size_t, int64_t) {
+    got.push_back("z" + std::to_string(data[0]));
+  });
+  for (uint8_t i = 1; i <= 2; ++i) {
+    const auto bytes = tagged(i, 4);
+    bus_.publish_raw("A", bytes.data(), bytes.size());
+  }
+  EXPECT_THROW(scheduler_.run_until(0), std::runtime_error) << "the first exception, not the second";
+  EXPECT_EQ(got, (std::vector<std::string>{"x1", "y1", "z1"}));
+  EXPECT_THROW(scheduler_.run_until(0), std::runtime_error);
+  EXPECT_EQ(got, (std::vector<std::string>{"x1", "y1", "z1", "x2", "y2", "z2"}));
+  EXPECT_EQ(scheduler_.pending(), 0u);
+}
+
 // The bus's events hold only a pointer to it: going away, it cancels them, so the scheduler
 // neither runs them nor holds anything of the bus afterwards.
 TEST_F(VirtualBusTest, ABusDestroyedWithDeliveriesPendingCancelsThem) {
@@ -287,7 +339,7 @@ TEST_F(VirtualBusTest, ABusDestroyedWithDeliveriesPendingCancelsThem) {
     const auto bytes = tagged(1, 16);
     for (int i = 0; i < 3; ++i) doomed.publish_raw("A", bytes.data(), bytes.size());
     scheduler_.schedule_at(0, [&] { ++later; });
-    EXPECT_EQ(scheduler_.pending(), 7u);
+    EXPECT_EQ(scheduler_.pending(), 4u) << "one event per message, whatever its subscribers";
   }
   EXPECT_EQ(scheduler_.pending(), 1u);
   scheduler_.run_until(10);
