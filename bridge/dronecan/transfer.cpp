@@ -70,9 +70,8 @@ std::size_t transfer_frame_count(std::size_t payload_size) {
   return (payload_size + 2 + 6) / 7;
 }
 
-void append_transfer_frames(const TransferHeader& header, uint64_t data_type_signature,
-                            const uint8_t* payload, std::size_t size,
-                            std::vector<CanFrame>& out) {
+void append_transfer_frames_seeded(const TransferHeader& header, uint16_t crc_seed, const uint8_t* payload,
+                                   std::size_t size, std::vector<CanFrame>& out) {
   CanFrame frame;
   frame.id = make_can_id(header);
   frame.extended = true;
@@ -85,7 +84,7 @@ void append_transfer_frames(const TransferHeader& header, uint64_t data_type_sig
     out.push_back(frame);
     return;
   }
-  const uint16_t crc = transfer_crc(data_type_signature, payload, size);
+  const uint16_t crc = crc16_ccitt_false(payload, size, crc_seed);
   // The CRC travels as the first two bytes of the stream, low byte first.
   std::size_t offset = 0;  // in the stream CRC + payload
   const std::size_t stream_size = size + 2;

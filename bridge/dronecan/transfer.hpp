@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "bridge/can/can_frame.hpp"
+#include "bridge/dronecan/crc.hpp"
 #include "bridge/dronecan/serialization.hpp"
 
 namespace a3::bridge {
@@ -62,10 +63,14 @@ struct TailByte {
 // Number of frames a payload of this size takes.
 std::size_t transfer_frame_count(std::size_t payload_size);
 
-// Appends the frames of one transfer to out (out is not cleared). The signature seeds the
-// CRC of multi-frame transfers.
-void append_transfer_frames(const TransferHeader& header, uint64_t data_type_signature,
-                            const uint8_t* payload, std::size_t size, std::vector<CanFrame>& out);
+// Appends the frames of one transfer to out (out is not cleared). crc_seed (transfer_crc_seed
+// of the data type's signature) seeds the CRC of multi-frame transfers.
+void append_transfer_frames_seeded(const TransferHeader& header, uint16_t crc_seed, const uint8_t* payload,
+                                   std::size_t size, std::vector<CanFrame>& out);
+inline void append_transfer_frames(const TransferHeader& header, uint64_t data_type_signature,
+                                   const uint8_t* payload, std::size_t size, std::vector<CanFrame>& out) {
+  append_transfer_frames_seeded(header, transfer_crc_seed(data_type_signature), payload, size, out);
+}
 
 // The header of a message of type Msg (its default data type ID).
 template <DsdlCompound Msg>
@@ -87,7 +92,8 @@ CodecStatus append_message_frames(const Msg& msg, const TransferHeader& header, 
                                   std::vector<CanFrame>& out) {
   const CodecStatus status = encode_payload(msg, payload);
   if (status.ok()) {
-    append_transfer_frames(header, Msg::kType.signature, payload.data(), payload.size, out);
+    constexpr uint16_t kCrcSeed = transfer_crc_seed(Msg::kType.signature);
+    append_transfer_frames_seeded(header, kCrcSeed, payload.data(), payload.size, out);
   }
   return status;
 }

@@ -111,6 +111,33 @@ TEST(Crc, CheckValues) {
   EXPECT_EQ(transfer_crc_seed(0xa9af28aea2fbb254ULL), 0x1591);
 }
 
+// The CRC-16 takes eight bytes at a time: it must give the bit-by-bit definition's value for
+// every length (whole blocks, tails, both) and any starting register.
+TEST(Crc, Crc16MatchesTheBitwiseDefinitionForEveryLengthAndStart) {
+  auto bitwise = [](const uint8_t* data, std::size_t size, uint16_t crc) {
+    for (std::size_t i = 0; i < size; ++i) {
+      crc = static_cast<uint16_t>(crc ^ (data[i] << 8));
+      for (int bit = 0; bit < 8; ++bit) {
+        crc = static_cast<uint16_t>((crc & 0x8000u) != 0 ? (crc << 1) ^ 0x1021u : crc << 1);
+      }
+    }
+    return crc;
+  };
+  uint32_t x = 12345;
+  std::vector<uint8_t> data(80);
+  for (uint8_t& byte : data) {
+    x = x * 1664525u + 1013904223u;
+    byte = static_cast<uint8_t>(x >> 24);
+  }
+  for (const uint16_t start : {uint16_t{0xFFFF}, uint16_t{0}, uint16_t{0x1591}, uint16_t{0x8001}}) {
+    for (std::size_t size = 0; size <= data.size(); ++size) {
+      ASSERT_EQ(crc16_ccitt_false(data.data(), size, start), bitwise(data.data(), size, start))
+          << size << " bytes from 0x" << std::hex << start;
+    }
+  }
+  static_assert(transfer_crc_seed(0xa9af28aea2fbb254ULL) == 0x1591, "the seed is a constant expression");
+}
+
 TEST(Crc, Crc64CanBeExtendedFromAValue) {
   Crc64We whole;
   whole.add("abcdef");
