@@ -22,6 +22,11 @@ RecordedEpisode EpisodeRecorderNode::snapshot() const {
   return r;
 }
 
+void EpisodeRecorderNode::inspect(const std::function<void(const RecordedEpisode&)>& fn) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  fn(rec_);
+}
+
 void EpisodeRecorderNode::start(common::Executor&, common::Bus& bus) {
   namespace ch = common::channels;
   bus.subscribe<a3lcm::episode_event_t>(ch::kEpisode, [this](const a3lcm::episode_event_t& e, int64_t) {

@@ -6,6 +6,7 @@
 // objectives (success is what really happened). Snapshots are safe from any thread.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <mutex>
 #include <string>
@@ -65,6 +66,9 @@ class EpisodeRecorderNode final : public common::Node {
   std::string name() const override { return "recorder"; }
   void start(common::Executor& executor, common::Bus& bus) override;
   RecordedEpisode snapshot() const;
+  // Calls fn with the episode so far (without its objectives, which snapshot() adds) under the
+  // recorder's lock, without copying it. fn must not call the recorder.
+  void inspect(const std::function<void(const RecordedEpisode&)>& fn) const;
 
  private:
   mutable std::mutex mutex_;

@@ -205,12 +205,14 @@ RunResult run_virtual(const Scenario& s, const RunOptions& o, const RigConfigs& 
     while (status.empty()) {
       t += 0.5;
       rt.run_until(static_cast<int64_t>(t * 1e6));
-      const RecordedEpisode r = n.recorder->snapshot();
-      report(r);
       const bool done = n.conversation->finished();
       if (done && dialogue_end_s < 0.0) dialogue_end_s = t;
-      if (r.last_state.crashed && crash_s < 0.0) crash_s = t;
-      status = end_reason(r, done, t, dialogue_end_s, crash_s, s.mission.time_limit_s);
+      // Read in place: a copy of the episode so far every half second grows with the mission.
+      n.recorder->inspect([&](const RecordedEpisode& r) {
+        report(r);
+        if (r.last_state.crashed && crash_s < 0.0) crash_s = t;
+        status = end_reason(r, done, t, dialogue_end_s, crash_s, s.mission.time_limit_s);
+      });
       if (status.empty() && stop != nullptr && stop->load()) status = "interrupted";
     }
   } catch (const std::exception& e) {
