@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <utility>
 
 namespace a3::bridge {
 namespace {
@@ -93,6 +94,54 @@ constexpr std::array<std::array<std::array<uint8_t, 128>, 8>, 7> make_tail_stuff
   return table;
 }
 constexpr auto kTailStuff = make_tail_stuff_table();
+
+// The CRC-15 over whole data bytes, n at a time: the 15-bit register left-aligned in 16 bits
+// (polynomial << 1), so that, as for any 16-bit CRC, n bytes are n independent lookups:
+// kCrc15Slices[k][i] is the aligned register after byte i entered an all-zero one and k zero
+// bytes followed.
+constexpr std::array<std::array<uint16_t, 256>, 8> make_crc15_slices() {
+  std::array<std::array<uint16_t, 256>, 8> slices{};
+  for (unsigned i = 0; i < 256; ++i) slices[0][i] = static_cast<uint16_t>(kCrc15Table[i] << 1);
+  for (unsigned k = 1; k < 8; ++k) {
+    for (unsigned i = 0; i < 256; ++i) {
+      const uint16_t previous = slices[k - 1][i];
+      slices[k][i] = static_cast<uint16_t>((previous << 8) ^ slices[0][previous >> 8]);
+    }
+  }
+  return slices;
+}
+constexpr auto kCrc15Slices = make_crc15_slices();
+
+// The CRC-15 register after `crc` took N data bytes (straight-line code for each N).
+template <unsigned N>
+uint16_t crc15_bytes(uint16_t crc, const uint8_t* data) {
+  const auto& t = kCrc15Slices;
+  const unsigned aligned = crc << 1u;
+  if constexpr (N == 0) {
+    return crc;
+  } else if constexpr (N == 1) {
+    return static_cast<uint16_t>((((aligned << 8) & 0xFFFFu) ^ t[0][(aligned >> 8) ^ data[0]]) >> 1);
+  } else {
+    unsigned out = t[N - 1][(aligned >> 8) ^ data[0]] ^ t[N - 2][(aligned & 0xFFu) ^ data[1]];
+    [&]<std::size_t... I>(std::index_sequence<I...>) { ((out ^= t[N - 3 - I][data[I + 2]]), ...); }
+    (std::make_index_sequence<N - 2>{});
+    return static_cast<uint16_t>(out >> 1);
+  }
+}
+
+uint16_t crc15_bytes(uint16_t crc, const uint8_t* data, unsigned n) {
+  switch (n) {
+    case 0: return crc15_bytes<0>(crc, data);
+    case 1: return crc15_bytes<1>(crc, data);
+    case 2: return crc15_bytes<2>(crc, data);
+    case 3: return crc15_bytes<3>(crc, data);
+    case 4: return crc15_bytes<4>(crc, data);
+    case 5: return crc15_bytes<5>(crc, data);
+    case 6: return crc15_bytes<6>(crc, data);
+    case 7: return crc15_bytes<7>(crc, data);
+    default: return crc15_bytes<8>(crc, data);
+  }
+}
 
 // Counts the stuff bits of a bit stream pushed in pieces of up to 56 bits, MSB first.
 class StuffCounter {
@@ -181,6 +230,25 @@ const HeaderState& header_state(const HeaderBits& header) {
   return entry;
 }
 
+// The stuff bits of a whole frame whose header left `after`: its data bytes, then its CRC.
+// The header left fewer than 8 bits pending, and each data byte keeps that count, so every
+// byte is one table step.
+unsigned stuff_bits_after_header(const HeaderState& after, const uint8_t* data, unsigned n) {
+  const StuffCounter::State& h = after.stuff;
+  uint64_t acc = h.acc;
+  const unsigned pending = h.pending;
+  unsigned state = h.state, stuff = h.stuff_bits;
+  for (unsigned i = 0; i < n; ++i) {
+    acc = (acc << 8) | data[i];
+    const StuffEntry& e = kStuffTable[state][(acc >> pending) & 0xFFu];
+    state = e.next_state;
+    stuff += e.stuff_bits;
+  }
+  StuffCounter tail(StuffCounter::State{acc, pending, static_cast<uint8_t>(state), stuff});
+  tail.push(crc15_bytes(after.crc, data, n), 15);
+  return tail.finish();
+}
+
 }  // namespace
 
 uint16_t can_crc15(const uint8_t* bits, unsigned bit_count) {
@@ -204,14 +272,7 @@ unsigned can_frame_bits(const CanFrame& frame, BitStuffing stuffing) {
     return stuffed_region + kFixedTailBits + (stuffed_region - 1) / 4;
   }
   const HeaderState& after_header = header_state(header_bits(frame, dlc));
-  StuffCounter stuff(after_header.stuff);
-  uint16_t crc = after_header.crc;
-  for (unsigned i = 0; i < data_bytes; ++i) {
-    stuff.push(frame.data[i], 8);
-    crc = crc15_byte(crc, frame.data[i]);
-  }
-  stuff.push(crc, 15);
-  return stuffed_region + stuff.finish() + kFixedTailBits;
+  return stuffed_region + stuff_bits_after_header(after_header, frame.data.data(), data_bytes) + kFixedTailBits;
 }
 
 uint32_t can_arbitration_key(const CanFrame& frame) {
