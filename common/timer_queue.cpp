@@ -63,6 +63,20 @@ void TimerQueue::drop_cancelled_top() const {
   }
 }
 
+// Restores the heap after its top entry was replaced by a later one.
+void TimerQueue::sift_top_down() {
+  const std::size_t size = heap_.size();
+  const Entry moving = heap_.front();
+  std::size_t hole = 0;
+  for (std::size_t child = 1; child < size; child = 2 * hole + 1) {
+    if (child + 1 < size && later(heap_[child], heap_[child + 1])) ++child;
+    if (!later(moving, heap_[child])) break;
+    heap_[hole] = heap_[child];
+    hole = child;
+  }
+  heap_[hole] = moving;
+}
+
 bool TimerQueue::fifo_first() const {
   if (fifo_head_ == fifo_.size()) return false;
   return heap_.empty() || later(heap_.front(), fifo_[fifo_head_]);
@@ -110,8 +124,17 @@ std::optional<TimerQueue::Due> TimerQueue::pop_due(int64_t t_us) {
     entry = fifo_[fifo_head_++];
   } else {
     if (heap_.empty() || heap_.front().time_us > t_us) return std::nullopt;
+    entry = heap_.front();
+    const int64_t period_us = slots_[entry.id & kSlotMask].period_us;
+    current_us_ = entry.time_us;
+    if (period_us > 0) {
+      // Re-armed in place: one pass down the heap instead of a pop and a push.
+      heap_.front() = Entry{entry.time_us + period_us, next_seq_++, entry.id};
+      sift_top_down();
+      Slot& slot = slots_[entry.id & kSlotMask];
+      return Due{entry.id, entry.time_us, period_us, std::move(slot.fn)};
+    }
     std::pop_heap(heap_.begin(), heap_.end(), later);
-    entry = heap_.back();
     heap_.pop_back();
   }
   current_us_ = entry.time_us;

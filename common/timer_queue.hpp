@@ -59,6 +59,7 @@ class TimerQueue {
   void release_slot(uint32_t slot);
   bool is_live(const Entry& entry) const { return slots_[entry.id & kSlotMask].id == entry.id; }
   void push_entry(int64_t time_us, TimerId id);
+  void sift_top_down();
   void drop_cancelled_top() const;
   // True when the FIFO's front comes before the heap's top (both without cancelled entries).
   bool fifo_first() const;

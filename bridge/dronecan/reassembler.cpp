@@ -52,8 +52,13 @@ FrameVerdict TransferReassembler::reject(FrameError error) {
 
 TransferReassembler::Session* TransferReassembler::find_session(uint32_t key) {
   const uint64_t tag = kActiveTag | key;
+  // A transfer's frames usually come one after another: try the session found last first.
+  if (session_tags_[last_found_] == tag) return &sessions_[last_found_];
   for (std::size_t i = 0; i < session_tags_.size(); ++i) {
-    if (session_tags_[i] == tag) return &sessions_[i];
+    if (session_tags_[i] == tag) {
+      last_found_ = i;
+      return &sessions_[i];
+    }
   }
   return nullptr;
 }
@@ -139,7 +144,8 @@ FrameVerdict TransferReassembler::accept(const CanFrame& frame, int64_t rx_time_
     }
     session->active = true;
     session->key = key;
-    session_tags_[static_cast<std::size_t>(session - sessions_.data())] = kActiveTag | key;
+    last_found_ = static_cast<std::size_t>(session - sessions_.data());
+    session_tags_[last_found_] = kActiveTag | key;
     session->header = header;
     session->type = type;
     session->transfer_id = tail.transfer_id;

@@ -115,6 +115,7 @@ class TransferReassembler {
   std::vector<Session> sessions_;
   // One tag per session, scanned instead of the sessions themselves (each ~300 bytes).
   std::vector<uint64_t> session_tags_;
+  std::size_t last_found_ = 0;  // where find_session found a session last
   ReassemblerStats stats_;
   FrameError last_error_ = FrameError::kCount;
   std::array<uint8_t, kMaxTransferPayloadBytes> completed_{};
