@@ -47,11 +47,25 @@ void TimerQueue::push_entry(int64_t time_us, TimerId id) {
     fifo_.push_back(entry);
     return;
   }
+  push_later(entry);
+}
+
+void TimerQueue::push_later(Entry entry) {
+  if (!has_head_) {
+    if (heap_.empty() || later(heap_.front(), entry)) {
+      head_ = entry;
+      has_head_ = true;
+      return;
+    }
+  } else if (later(head_, entry)) {
+    std::swap(head_, entry);  // the new entry is the earliest: the old head goes to the heap
+  }
   heap_.push_back(entry);
   std::push_heap(heap_.begin(), heap_.end(), later);
 }
 
 void TimerQueue::drop_cancelled_top() const {
+  if (has_head_ && !is_live(head_)) has_head_ = false;
   while (!heap_.empty() && !is_live(heap_.front())) {
     std::pop_heap(heap_.begin(), heap_.end(), later);
     heap_.pop_back();
@@ -77,9 +91,15 @@ void TimerQueue::sift_top_down() {
   heap_[hole] = moving;
 }
 
+const TimerQueue::Entry* TimerQueue::earliest_later() const {
+  if (has_head_) return &head_;
+  return heap_.empty() ? nullptr : &heap_.front();
+}
+
 bool TimerQueue::fifo_first() const {
   if (fifo_head_ == fifo_.size()) return false;
-  return heap_.empty() || later(heap_.front(), fifo_[fifo_head_]);
+  const Entry* later_one = earliest_later();
+  return later_one == nullptr || later(*later_one, fifo_[fifo_head_]);
 }
 
 // Cancelled entries wait in the heap until they reach the top; when they outnumber the live
@@ -112,8 +132,8 @@ void TimerQueue::cancel(TimerId id) {
 std::optional<int64_t> TimerQueue::next_time_us() const {
   drop_cancelled_top();
   if (fifo_first()) return fifo_[fifo_head_].time_us;
-  if (heap_.empty()) return std::nullopt;
-  return heap_.front().time_us;
+  if (const Entry* later_one = earliest_later()) return later_one->time_us;
+  return std::nullopt;
 }
 
 std::optional<TimerQueue::Due> TimerQueue::pop_due(int64_t t_us) {
@@ -122,6 +142,10 @@ std::optional<TimerQueue::Due> TimerQueue::pop_due(int64_t t_us) {
   if (fifo_first()) {
     if (fifo_[fifo_head_].time_us > t_us) return std::nullopt;
     entry = fifo_[fifo_head_++];
+  } else if (has_head_) {
+    if (head_.time_us > t_us) return std::nullopt;
+    entry = head_;
+    has_head_ = false;
   } else {
     if (heap_.empty() || heap_.front().time_us > t_us) return std::nullopt;
     entry = heap_.front();

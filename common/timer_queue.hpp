@@ -4,8 +4,10 @@
 // in a reused vector (a cancelled timer's entry is dropped when it reaches the top), and a
 // callback is moved, never copied (a std::function's small-buffer callable stays inline).
 // Timers added for the time of the timer last popped (a bus delivery, a frame arbitrated
-// "now") skip the heap: they wait in a FIFO, which is already in (time, insertion) order,
-// and pop_due takes the earlier of the FIFO's front and the heap's top.
+// "now") skip the heap: they wait in a FIFO, which is already in (time, insertion) order.
+// A timer added for later but before everything in the heap (a CAN frame's end, 130 us on)
+// waits in a slot of its own, the head, and moves into the heap only when an earlier one
+// comes. pop_due takes the earliest of the FIFO's front, the head and the heap's top.
 #pragma once
 
 #include <cstdint>
@@ -59,15 +61,21 @@ class TimerQueue {
   void release_slot(uint32_t slot);
   bool is_live(const Entry& entry) const { return slots_[entry.id & kSlotMask].id == entry.id; }
   void push_entry(int64_t time_us, TimerId id);
+  void push_later(Entry entry);
   void sift_top_down();
   void drop_cancelled_top() const;
-  // True when the FIFO's front comes before the heap's top (both without cancelled entries).
+  // The earliest of the head and the heap's top (without cancelled entries), if any.
+  const Entry* earliest_later() const;
+  // True when the FIFO's front comes before the head and the heap's top.
   bool fifo_first() const;
   void compact_if_mostly_cancelled();
 
   std::vector<Slot> slots_;
   std::vector<uint32_t> free_slots_;
   mutable std::vector<Entry> heap_;  // min-heap on (time_us, seq); may hold cancelled entries
+  // When has_head_: an entry before every one in the heap (maybe cancelled).
+  mutable Entry head_{};
+  mutable bool has_head_ = false;
   // Entries in (time_us, seq) order from fifo_head_ on; may hold cancelled entries.
   mutable std::vector<Entry> fifo_;
   mutable std::size_t fifo_head_ = 0;

@@ -286,6 +286,70 @@ TEST(TimerQueue, TimersAddedForTheCurrentTimeKeepTheOrder) {
   EXPECT_TRUE(std::none_of(refs.begin(), refs.end(), [](const Ref& r) { return r.pending; }));
 }
 
+// Periodic timers (re-armed in the heap, or in the head slot when they are the earliest)
+// among one-shots added by callbacks for now, for just after now (the head slot) and for
+// later, with cancels: every timer that runs is the earliest (time, insertion) pending in a
+// reference model beside the queue, and a periodic one runs every period until cancelled.
+TEST(TimerQueue, PeriodicAndOneShotTimersInterleaveAsAReferenceSaysWhereverTheyWait) {
+  TimerQueue queue;
+  std::mt19937 rng(7);
+  struct Ref {
+    int64_t time_us;
+    uint64_t order;
+    int64_t period_us;
+    TimerId id;
+    bool pending;
+  };
+  std::vector<Ref> refs;  // index = label
+  uint64_t next_order = 0;
+  int runs = 0, wrong = 0, periodic_runs = 0;
+  std::function<void(int64_t, int64_t)> add;
+  auto run = [&](int label) {
+    ++runs;
+    int expected = -1;
+    for (int i = 0; i < static_cast<int>(refs.size()); ++i) {
+      if (!refs[i].pending) continue;
+      if (expected < 0 || refs[i].time_us < refs[expected].time_us ||
+          (refs[i].time_us == refs[expected].time_us && refs[i].order < refs[expected].order)) {
+        expected = i;
+      }
+    }
+    wrong += label == expected ? 0 : 1;
+    Ref& ref = refs[label];
+    const int64_t now = ref.time_us;
+    if (ref.period_us > 0) {
+      ++periodic_runs;
+      ref.time_us += ref.period_us;  // re-armed before its callback runs: a new insertion
+      ref.order = next_order++;
+    } else {
+      ref.pending = false;
+    }
+    if (refs.size() < 3000) {
+      const unsigned kind = rng() % 3;
+      add(kind == 0 ? now : now + 1 + static_cast<int64_t>(rng() % (kind == 1 ? 2 : 20)), 0);
+    }
+    if (rng() % 5 == 0) {
+      const std::size_t victim = rng() % refs.size();
+      if (refs[victim].pending) {
+        queue.cancel(refs[victim].id);
+        refs[victim].pending = false;
+      }
+    }
+  };
+  add = [&](int64_t t, int64_t period_us) {
+    const int label = static_cast<int>(refs.size());
+    refs.push_back({t, next_order++, period_us, 0, true});
+    refs[label].id = queue.add(t, period_us, [&run, label] { run(label); });
+  };
+  for (int i = 0; i < 6; ++i) add(static_cast<int64_t>(rng() % 10), 3 + i);
+  for (int i = 0; i < 20; ++i) add(static_cast<int64_t>(rng() % 10), 0);
+  std::vector<std::string> times;
+  drain(queue, 20'000, times);
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GT(runs, 3000);
+  EXPECT_GT(periodic_runs, 1000);
+}
+
 TEST(TimerQueue, ATimerForTheCurrentTimeRunsAfterThoseAlreadyDueThenAndCanBeCancelled) {
   TimerQueue queue;
   std::vector<std::string> order;
