@@ -11,14 +11,37 @@ namespace a3::bridge {
 struct VirtualCanBus::Impl {
   struct Pending {
     uint32_t key;  // arbitration key
-    uint64_t seq;  // FIFO among equal keys
     CanFrame frame;
     int64_t queued_ns;
   };
-  // Ordered by (arbitration key, sequence): front() of a port's heap is what it offers.
-  static bool after(const Pending& a, const Pending& b) {
-    return a.key != b.key ? a.key > b.key : a.seq > b.seq;
-  }
+  // A port's frames waiting for the bus in arbitration order: by key, and in the order sent
+  // among equal keys. Nearly a FIFO (a transfer's frames share a key), so it is a sorted
+  // vector read from an index: a frame is appended and slid back past the later keys only;
+  // the storage is reused, and the consumed front dropped once it is most of it.
+  class PendingFrames {
+   public:
+    bool empty() const { return head_ == items_.size(); }
+    std::size_t size() const { return items_.size() - head_; }
+    const Pending& front() const { return items_[head_]; }
+    void push(const Pending& pending) {
+      if (head_ == items_.size()) {
+        items_.clear();
+        head_ = 0;
+      } else if (head_ >= 64 && 2 * head_ >= items_.size()) {
+        items_.erase(items_.begin(), items_.begin() + static_cast<std::ptrdiff_t>(head_));
+        head_ = 0;
+      }
+      items_.push_back(pending);
+      for (std::size_t i = items_.size() - 1; i > head_ && items_[i - 1].key > pending.key; --i) {
+        std::swap(items_[i - 1], items_[i]);
+      }
+    }
+    Pending pop() { return items_[head_++]; }
+
+   private:
+    std::vector<Pending> items_;
+    std::size_t head_ = 0;  // the first frame still waiting
+  };
   struct Port {
     // The bus while it exists (its destructor clears this): a plain pointer, because send()
     // runs for every frame and locking a weak_ptr costs two atomic operations.
@@ -27,7 +50,7 @@ struct VirtualCanBus::Impl {
     bool started = false;
     common::Executor* executor = nullptr;
     CanFrameHandler handler;
-    std::vector<Pending> queue;  // a binary heap on after(); its storage is reused
+    PendingFrames queue;
     CanBusStats stats;
   };
   // The frame on the wire: one at a time.
@@ -43,7 +66,6 @@ struct VirtualCanBus::Impl {
   bool busy = false;
   bool arbitration_scheduled = false;
   int64_t bus_free_ns = 0;
-  uint64_t sequence = 0;
   VirtualCanBusStats stats;
   InFlight in_flight;
   // The bus's pending events, cancelled when it goes; their callbacks capture only `this`,
@@ -86,8 +108,7 @@ struct VirtualCanBus::Impl {
       ++port.stats.send_refused;
       return false;
     }
-    port.queue.push_back(Pending{can_arbitration_key(frame), sequence++, frame, now_ns()});
-    std::push_heap(port.queue.begin(), port.queue.end(), after);
+    port.queue.push(Pending{can_arbitration_key(frame), frame, now_ns()});
     ++port.stats.frames_sent;
     port.stats.tx_queue_peak = std::max(port.stats.tx_queue_peak, port.queue.size());
     if (!busy && !arbitration_scheduled) schedule_arbitration(std::max(now_ns(), bus_free_ns));
@@ -118,9 +139,7 @@ struct VirtualCanBus::Impl {
     if (busy) return;
     Port* winner = arbitration_winner();
     if (winner == nullptr) return;
-    std::pop_heap(winner->queue.begin(), winner->queue.end(), after);
-    const Pending head = winner->queue.back();
-    winner->queue.pop_back();
+    const Pending head = winner->queue.pop();
     const int64_t delay = start_ns - head.queued_ns;
     stats.max_queue_delay_ns = std::max(stats.max_queue_delay_ns, delay);
     stats.total_queue_delay_ns += delay;

@@ -121,6 +121,45 @@ TEST_F(VirtualBusTest, ABusyBusMakesAnUrgentFrameWaitButItWinsTheNextArbitration
   EXPECT_GT(bus.stats().max_queue_delay_ns, 100'000) << "the second slow frame waited two frames";
 }
 
+// One port's own queue is in arbitration order too: a frame with a lower ID queued behind
+// others goes before them, frames with equal IDs keep the order sent. And a queue that never
+// empties (a port always offering more) keeps that order while it recycles its storage.
+TEST_F(VirtualBusTest, APortSendsItsQueueByIdThenInTheOrderSent) {
+  VirtualCanBus bus(scheduler_, {});
+  auto port = bus.attach("port");
+  auto monitor = bus.attach("monitor");
+  std::vector<Received> seen;
+  listen(*monitor, seen);
+  scheduler_.schedule_at(0, [&] {
+    port->send(frame(0x1F000001, 8, 1));
+    port->send(frame(0x1F000001, 8, 2));
+    port->send(frame(0x0A000001, 8, 3));
+    port->send(frame(0x1F000001, 8, 4));
+    port->send(frame(0x05000001, 8, 5));
+    port->send(frame(0x0A000001, 8, 6));
+  });
+  scheduler_.run_until(10'000);
+  std::vector<int> order;
+  for (const Received& r : seen) order.push_back(r.frame.data[0]);
+  EXPECT_EQ(order, (std::vector<int>{5, 3, 6, 1, 2, 4}));
+
+  seen.clear();
+  int sent = 0;
+  monitor->start(scheduler_, [&](const CanFrame& f, int64_t t) {
+    seen.push_back({f, t});
+    // One more for each one heard: three always wait, and the queue never empties.
+    if (sent < 300) port->send(frame(0x1F000001, 8, static_cast<uint8_t>(sent++ % 256)));
+  });
+  scheduler_.schedule_at(20'000, [&] {
+    for (int i = 0; i < 4; ++i) port->send(frame(0x1F000001, 8, static_cast<uint8_t>(sent++ % 256)));
+  });
+  scheduler_.run_until(200'000);
+  ASSERT_EQ(seen.size(), 300u);
+  for (std::size_t i = 0; i < seen.size(); ++i) {
+    ASSERT_EQ(seen[i].frame.data[0], static_cast<uint8_t>(i % 256)) << "frame " << i;
+  }
+}
+
 // A port that answers from inside its receive handler queues while the bus is idle for an
 // instant: the answer's frames still go out one at a time, in order.
 TEST_F(VirtualBusTest, FramesQueuedFromAReceiveHandlerKeepTheirOrder) {
