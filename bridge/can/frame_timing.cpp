@@ -1,13 +1,15 @@
 // CAN frame wire length and arbitration order (see frame_timing.hpp). The exact length is
-// computed a byte at a time: a table-driven CRC-15 and a table-driven stuff-bit counter
-// (a five-equal-bits state machine stepped by whole bytes), both resumed from a cached state
-// after the frame's header when that header was seen recently. frame_bits_reference.cpp holds
-// the bit-by-bit version the tests compare this with.
+// computed a byte at a time: a table-driven CRC-15 (the data's bytes as independent lookups)
+// and a table-driven stuff-bit counter (a five-equal-bits state machine stepped by whole
+// bytes), both resumed from a cached state after the frame's header when that header was seen
+// recently. frame_bits_reference.cpp holds the bit-by-bit version the tests compare this with.
 #include "bridge/can/frame_timing.hpp"
 
 #include <algorithm>
 #include <array>
 #include <utility>
+
+#include "bridge/can/crc16_slicing.hpp"
 
 namespace a3::bridge {
 namespace {
@@ -96,21 +98,8 @@ constexpr std::array<std::array<std::array<uint8_t, 128>, 8>, 7> make_tail_stuff
 constexpr auto kTailStuff = make_tail_stuff_table();
 
 // The CRC-15 over whole data bytes, n at a time: the 15-bit register left-aligned in 16 bits
-// (polynomial << 1), so that, as for any 16-bit CRC, n bytes are n independent lookups:
-// kCrc15Slices[k][i] is the aligned register after byte i entered an all-zero one and k zero
-// bytes followed.
-constexpr std::array<std::array<uint16_t, 256>, 8> make_crc15_slices() {
-  std::array<std::array<uint16_t, 256>, 8> slices{};
-  for (unsigned i = 0; i < 256; ++i) slices[0][i] = static_cast<uint16_t>(kCrc15Table[i] << 1);
-  for (unsigned k = 1; k < 8; ++k) {
-    for (unsigned i = 0; i < 256; ++i) {
-      const uint16_t previous = slices[k - 1][i];
-      slices[k][i] = static_cast<uint16_t>((previous << 8) ^ slices[0][previous >> 8]);
-    }
-  }
-  return slices;
-}
-constexpr auto kCrc15Slices = make_crc15_slices();
+// (polynomial << 1), so that, as for any 16-bit CRC, n bytes are n independent lookups.
+constexpr Crc16SlicingTables kCrc15Slices = crc16_slicing_tables(kCrc15Polynomial << 1);
 
 // The CRC-15 register after `crc` took N data bytes (straight-line code for each N).
 template <unsigned N>

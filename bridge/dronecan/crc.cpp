@@ -3,37 +3,20 @@
 
 #include <array>
 
+#include "bridge/can/crc16_slicing.hpp"
+
 namespace a3::bridge {
 namespace {
 
-// kCrc16Tables[k][i]: the CRC register after byte i (entering an all-zero register) and then k
-// zero bytes. Eight bytes are then eight independent lookups instead of a chain of eight.
-constexpr std::array<std::array<uint16_t, 256>, 8> make_crc16_tables() {
-  std::array<std::array<uint16_t, 256>, 8> tables{};
-  for (unsigned i = 0; i < 256; ++i) {
-    uint16_t crc = static_cast<uint16_t>(i << 8);
-    for (int bit = 0; bit < 8; ++bit) {
-      crc = static_cast<uint16_t>((crc & 0x8000u) != 0 ? (crc << 1) ^ 0x1021u : crc << 1);
-    }
-    tables[0][i] = crc;
-  }
-  for (unsigned k = 1; k < 8; ++k) {
-    for (unsigned i = 0; i < 256; ++i) {
-      const uint16_t previous = tables[k - 1][i];
-      tables[k][i] = static_cast<uint16_t>((previous << 8) ^ tables[0][previous >> 8]);
-    }
-  }
-  return tables;
-}
-
-constexpr auto kCrc16Tables = make_crc16_tables();
+constexpr Crc16SlicingTables kCrc16Tables = crc16_slicing_tables(0x1021);
 
 }  // namespace
 
 uint16_t crc16_ccitt_false(const uint8_t* data, std::size_t size, uint16_t crc) {
   const auto& t = kCrc16Tables;
   std::size_t i = 0;
-  // The register's two bytes meet the first two data bytes; the six after enter as data only.
+  // Eight bytes as eight independent lookups (crc16_slicing.hpp): the register's two bytes
+  // meet the first two data bytes; the six after enter as data only.
   for (; i + 8 <= size; i += 8) {
     const uint8_t* d = data + i;
     crc = static_cast<uint16_t>(t[7][(crc >> 8) ^ d[0]] ^ t[6][(crc & 0xFFu) ^ d[1]] ^ t[5][d[2]] ^

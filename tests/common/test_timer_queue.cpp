@@ -24,6 +24,28 @@ void drain(TimerQueue& queue, int64_t t_us, std::vector<std::string>& times) {
   }
 }
 
+// A reference model of pending timers for the randomized tests: the one that must run next is
+// the earliest (time, insertion order) of those pending.
+struct RefTimer {
+  int64_t time_us;
+  uint64_t order;
+  TimerId id;
+  int64_t period_us;
+  bool pending;
+};
+
+int earliest_pending(const std::vector<RefTimer>& refs) {
+  int earliest = -1;
+  for (int i = 0; i < static_cast<int>(refs.size()); ++i) {
+    if (!refs[i].pending) continue;
+    if (earliest < 0 || refs[i].time_us < refs[earliest].time_us ||
+        (refs[i].time_us == refs[earliest].time_us && refs[i].order < refs[earliest].order)) {
+      earliest = i;
+    }
+  }
+  return earliest;
+}
+
 TEST(TimerQueue, OrdersByTimeThenInsertion) {
   TimerQueue queue;
   std::vector<std::string> ran;
@@ -231,26 +253,12 @@ TEST(TimerQueue, OrderMatchesAStableSortWithManyTiesAndCancels) {
 TEST(TimerQueue, TimersAddedForTheCurrentTimeKeepTheOrder) {
   TimerQueue queue;
   std::mt19937 rng(42);
-  struct Ref {
-    int64_t time_us;
-    uint64_t order;
-    TimerId id;
-    bool pending;
-  };
-  std::vector<Ref> refs;  // index = label
+  std::vector<RefTimer> refs;  // index = label
   int runs = 0, wrong = 0, cancels = 0, now_adds = 0;
   std::function<void(int64_t)> add;
   auto run = [&](int label) {
     ++runs;
-    int expected = -1;
-    for (int i = 0; i < static_cast<int>(refs.size()); ++i) {
-      if (!refs[i].pending) continue;
-      if (expected < 0 || refs[i].time_us < refs[expected].time_us ||
-          (refs[i].time_us == refs[expected].time_us && refs[i].order < refs[expected].order)) {
-        expected = i;
-      }
-    }
-    wrong += label == expected ? 0 : 1;
+    wrong += label == earliest_pending(refs) ? 0 : 1;
     refs[label].pending = false;
     const int64_t now = refs[label].time_us;
     if (refs.size() < 4000) {
@@ -272,7 +280,7 @@ TEST(TimerQueue, TimersAddedForTheCurrentTimeKeepTheOrder) {
   };
   add = [&](int64_t t) {
     const int label = static_cast<int>(refs.size());
-    refs.push_back({t, refs.size(), 0, true});
+    refs.push_back({t, refs.size(), 0, 0, true});
     refs[label].id = queue.add(t, 0, [&run, label] { run(label); });
   };
   for (int i = 0; i < 50; ++i) add(static_cast<int64_t>(rng() % 10));
@@ -283,7 +291,7 @@ TEST(TimerQueue, TimersAddedForTheCurrentTimeKeepTheOrder) {
   EXPECT_GT(runs, 1000);
   EXPECT_GT(now_adds, 300);
   EXPECT_GT(cancels, 50);
-  EXPECT_TRUE(std::none_of(refs.begin(), refs.end(), [](const Ref& r) { return r.pending; }));
+  EXPECT_TRUE(std::none_of(refs.begin(), refs.end(), [](const RefTimer& r) { return r.pending; }));
 }
 
 // Periodic timers (re-armed in the heap, or in the head slot when they are the earliest)
@@ -293,29 +301,14 @@ TEST(TimerQueue, TimersAddedForTheCurrentTimeKeepTheOrder) {
 TEST(TimerQueue, PeriodicAndOneShotTimersInterleaveAsAReferenceSaysWhereverTheyWait) {
   TimerQueue queue;
   std::mt19937 rng(7);
-  struct Ref {
-    int64_t time_us;
-    uint64_t order;
-    int64_t period_us;
-    TimerId id;
-    bool pending;
-  };
-  std::vector<Ref> refs;  // index = label
+  std::vector<RefTimer> refs;  // index = label
   uint64_t next_order = 0;
   int runs = 0, wrong = 0, periodic_runs = 0;
   std::function<void(int64_t, int64_t)> add;
   auto run = [&](int label) {
     ++runs;
-    int expected = -1;
-    for (int i = 0; i < static_cast<int>(refs.size()); ++i) {
-      if (!refs[i].pending) continue;
-      if (expected < 0 || refs[i].time_us < refs[expected].time_us ||
-          (refs[i].time_us == refs[expected].time_us && refs[i].order < refs[expected].order)) {
-        expected = i;
-      }
-    }
-    wrong += label == expected ? 0 : 1;
-    Ref& ref = refs[label];
+    wrong += label == earliest_pending(refs) ? 0 : 1;
+    RefTimer& ref = refs[label];
     const int64_t now = ref.time_us;
     if (ref.period_us > 0) {
       ++periodic_runs;
@@ -338,7 +331,7 @@ TEST(TimerQueue, PeriodicAndOneShotTimersInterleaveAsAReferenceSaysWhereverTheyW
   };
   add = [&](int64_t t, int64_t period_us) {
     const int label = static_cast<int>(refs.size());
-    refs.push_back({t, next_order++, period_us, 0, true});
+    refs.push_back({t, next_order++, 0, period_us, true});
     refs[label].id = queue.add(t, period_us, [&run, label] { run(label); });
   };
   for (int i = 0; i < 6; ++i) add(static_cast<int64_t>(rng() % 10), 3 + i);
