@@ -41,7 +41,8 @@ TransferReassembler::TransferReassembler(const DataTypeTable& types, Reassembler
                                 std::to_string(config_.transfer_timeout_us));
   }
   sessions_.resize(config_.max_sessions);
-  session_tags_.assign(config_.max_sessions, 0);
+  active_.reserve(config_.max_sessions);
+  for (std::size_t i = config_.max_sessions; i-- > 0;) free_.push_back(static_cast<uint32_t>(i));
 }
 
 FrameVerdict TransferReassembler::reject(FrameError error) {
@@ -51,36 +52,44 @@ FrameVerdict TransferReassembler::reject(FrameError error) {
 }
 
 TransferReassembler::Session* TransferReassembler::find_session(uint32_t key) {
-  const uint64_t tag = kActiveTag | key;
-  // A transfer's frames usually come one after another: try the session found last first.
-  if (session_tags_[last_found_] == tag) return &sessions_[last_found_];
-  for (std::size_t i = 0; i < session_tags_.size(); ++i) {
-    if (session_tags_[i] == tag) {
-      last_found_ = i;
-      return &sessions_[i];
-    }
+  for (const uint32_t index : active_) {
+    if (sessions_[index].key == key) return &sessions_[index];
   }
   return nullptr;
 }
 
 TransferReassembler::Session* TransferReassembler::allocate_session(int64_t now_us) {
-  for (int attempt = 0; attempt < 2; ++attempt) {
-    if (attempt == 1) expire(now_us);
-    for (std::size_t i = 0; i < session_tags_.size(); ++i) {
-      if (session_tags_[i] == 0) return &sessions_[i];
-    }
-  }
-  return nullptr;
+  if (free_.empty()) expire(now_us);
+  if (free_.empty()) return nullptr;
+  const uint32_t index = free_.back();
+  free_.pop_back();
+  active_.push_back(index);
+  return &sessions_[index];
 }
 
-std::size_t TransferReassembler::active_transfers() const {
-  return static_cast<std::size_t>(
-      std::count_if(sessions_.begin(), sessions_.end(), [](const Session& s) { return s.active; }));
+void TransferReassembler::drop(Session& session) {
+  const auto index = static_cast<uint32_t>(&session - sessions_.data());
+  active_.erase(std::find(active_.begin(), active_.end(), index));
+  free_.push_back(index);
 }
+
+const DataTypeTable::Entry* TransferReassembler::find_type(TransferKind kind, uint16_t data_type_id) {
+  const uint32_t key = (static_cast<uint32_t>(kind) << 16) | data_type_id;
+  if (key == last_type_key_) return last_type_;
+  const DataTypeTable::Entry* type = types_.find(kind, data_type_id);
+  if (type != nullptr) {  // an unknown type may be added later: only hits are remembered
+    last_type_key_ = key;
+    last_type_ = type;
+  }
+  return type;
+}
+
+std::size_t TransferReassembler::active_transfers() const { return active_.size(); }
 
 void TransferReassembler::expire(int64_t now_us) {
-  for (Session& s : sessions_) {
-    if (s.active && now_us - s.last_us > config_.transfer_timeout_us) {
+  for (std::size_t i = active_.size(); i-- > 0;) {
+    Session& s = sessions_[active_[i]];
+    if (now_us - s.last_us > config_.transfer_timeout_us) {
       drop(s);
       ++stats_.expired_transfers;
     }
@@ -104,7 +113,7 @@ FrameVerdict TransferReassembler::accept(const CanFrame& frame, int64_t rx_time_
     return FrameVerdict::kIgnored;
   }
   const DataTypeTable::Entry* type =
-      anonymous ? nullptr : types_.find(header.kind, header.data_type_id);
+      anonymous ? nullptr : find_type(header.kind, header.data_type_id);
   if (type == nullptr && !anonymous) {
     ++stats_.ignored_frames;
     return FrameVerdict::kIgnored;
@@ -142,10 +151,7 @@ FrameVerdict TransferReassembler::accept(const CanFrame& frame, int64_t rx_time_
       session = allocate_session(rx_time_us);
       if (session == nullptr) return reject(FrameError::kSessionTableFull);
     }
-    session->active = true;
     session->key = key;
-    last_found_ = static_cast<std::size_t>(session - sessions_.data());
-    session_tags_[last_found_] = kActiveTag | key;
     session->header = header;
     session->type = type;
     session->transfer_id = tail.transfer_id;

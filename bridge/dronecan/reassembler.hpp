@@ -87,7 +87,6 @@ class TransferReassembler {
 
  private:
   struct Session {
-    bool active = false;
     uint32_t key = 0;  // the CAN ID without its priority
     TransferHeader header;
     const DataTypeTable::Entry* type = nullptr;
@@ -102,20 +101,20 @@ class TransferReassembler {
 
   FrameVerdict reject(FrameError error);
   Session* find_session(uint32_t key);
+  // A free session, now active (expiring stale ones if none is free), or null.
   Session* allocate_session(int64_t now_us);
-  void drop(Session& session) {
-    session.active = false;
-    session_tags_[static_cast<std::size_t>(&session - sessions_.data())] = 0;
-  }
-  // A session's tag: kActiveTag | key while active, 0 when free.
-  static constexpr uint64_t kActiveTag = uint64_t{1} << 32;
+  void drop(Session& session);
+  const DataTypeTable::Entry* find_type(TransferKind kind, uint16_t data_type_id);
 
   const DataTypeTable& types_;
   ReassemblerConfig config_;
   std::vector<Session> sessions_;
-  // One tag per session, scanned instead of the sessions themselves (each ~300 bytes).
-  std::vector<uint64_t> session_tags_;
-  std::size_t last_found_ = 0;  // where find_session found a session last
+  // The indices of the active sessions (few: a frame looks only at these) and of the free ones.
+  std::vector<uint32_t> active_;
+  std::vector<uint32_t> free_;
+  // The type found last: a transfer's frames come one after another. Entries never move.
+  uint32_t last_type_key_ = UINT32_MAX;
+  const DataTypeTable::Entry* last_type_ = nullptr;
   ReassemblerStats stats_;
   FrameError last_error_ = FrameError::kCount;
   std::array<uint8_t, kMaxTransferPayloadBytes> completed_{};

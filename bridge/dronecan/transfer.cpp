@@ -21,29 +21,6 @@ uint32_t make_can_id(const TransferHeader& h) {
          (static_cast<uint32_t>(h.destination_node_id & 0x7F) << 8) | (1u << 7) | source;
 }
 
-TransferHeader parse_can_id(uint32_t id, bool* anonymous) {
-  TransferHeader h;
-  h.priority = static_cast<uint8_t>((id >> 24) & 0x1F);
-  h.source_node_id = static_cast<uint8_t>(id & 0x7F);
-  const bool service = (id & (1u << 7)) != 0;
-  bool is_anonymous = false;
-  if (!service) {
-    h.kind = TransferKind::kMessage;
-    if (h.source_node_id == 0) {
-      is_anonymous = true;
-      h.data_type_id = static_cast<uint16_t>((id >> 8) & 0x3);
-    } else {
-      h.data_type_id = static_cast<uint16_t>((id >> 8) & 0xFFFF);
-    }
-  } else {
-    h.kind = (id & (1u << 15)) != 0 ? TransferKind::kRequest : TransferKind::kResponse;
-    h.data_type_id = static_cast<uint16_t>((id >> 16) & 0xFF);
-    h.destination_node_id = static_cast<uint8_t>((id >> 8) & 0x7F);
-  }
-  if (anonymous != nullptr) *anonymous = is_anonymous;
-  return h;
-}
-
 std::string check_header(const TransferHeader& h) {
   if (h.priority > 31) return "priority " + std::to_string(h.priority) + " > 31";
   if (h.source_node_id > kMaxNodeId) {

@@ -39,8 +39,30 @@ struct TransferHeader {
 // Out-of-range fields are masked to their widths; check_header() says what is wrong first.
 uint32_t make_can_id(const TransferHeader& header);
 // What a 29-bit ID says (transfer_id left 0). *anonymous is set for anonymous messages,
-// whose data_type_id holds only the two low bits of the type ID.
-TransferHeader parse_can_id(uint32_t can_id, bool* anonymous = nullptr);
+// whose data_type_id holds only the two low bits of the type ID. Inline: every received
+// frame is parsed, and a caller reads only some of the fields.
+inline TransferHeader parse_can_id(uint32_t id, bool* anonymous = nullptr) {
+  TransferHeader h;
+  h.priority = static_cast<uint8_t>((id >> 24) & 0x1F);
+  h.source_node_id = static_cast<uint8_t>(id & 0x7F);
+  const bool service = (id & (1u << 7)) != 0;
+  bool is_anonymous = false;
+  if (!service) {
+    h.kind = TransferKind::kMessage;
+    if (h.source_node_id == 0) {
+      is_anonymous = true;
+      h.data_type_id = static_cast<uint16_t>((id >> 8) & 0x3);
+    } else {
+      h.data_type_id = static_cast<uint16_t>((id >> 8) & 0xFFFF);
+    }
+  } else {
+    h.kind = (id & (1u << 15)) != 0 ? TransferKind::kRequest : TransferKind::kResponse;
+    h.data_type_id = static_cast<uint16_t>((id >> 16) & 0xFF);
+    h.destination_node_id = static_cast<uint8_t>((id >> 8) & 0x7F);
+  }
+  if (anonymous != nullptr) *anonymous = is_anonymous;
+  return h;
+}
 // "" when the header can be sent, else what is wrong ("priority 40 > 31").
 std::string check_header(const TransferHeader& header);
 

@@ -230,6 +230,56 @@ TEST_F(ReassemblerTest, UnknownTypesAreIgnoredAndSingleFramesNeedToggleZero) {
   EXPECT_EQ(r.last_error(), FrameError::kToggleError);
 }
 
+// A receiver learns a type after frames of it were ignored: from then on they arrive.
+TEST_F(ReassemblerTest, ATypeAddedLaterIsReceivedFromThenOn) {
+  TransferReassembler r(table_);
+  Payload payload;
+  std::vector<CanFrame> frames;
+  ASSERT_TRUE(append_message_frames(ArmingStatus{255}, message_header<ArmingStatus>(3, 0), payload,
+                                    frames).ok());
+  ReceivedTransfer t;
+  EXPECT_EQ(r.accept(frames[0], 0, t), FrameVerdict::kIgnored);
+  EXPECT_EQ(r.accept(imu_frames(4, 0, 1.0f)[0], 0, t), FrameVerdict::kInProgress);
+  EXPECT_EQ(r.accept(frames[0], 0, t), FrameVerdict::kIgnored);
+  table_.add_message<ArmingStatus>();
+  EXPECT_EQ(r.accept(frames[0], 0, t), FrameVerdict::kTransferComplete);
+  EXPECT_EQ(t.type, table_.find(TransferKind::kMessage, ArmingStatus::kType.default_dtid));
+}
+
+// Many sources' transfers in flight at once, finishing in another order than they started,
+// while single-frame transfers pass between them: each one arrives whole, and every session
+// is free again afterwards.
+TEST_F(ReassemblerTest, ManyInterleavedTransfersEachArriveWholeAndFreeTheirSessions) {
+  ReassemblerConfig config;
+  config.max_sessions = 8;
+  TransferReassembler r(table_, config);
+  std::vector<std::vector<CanFrame>> transfers;
+  for (uint8_t node = 1; node <= 8; ++node) transfers.push_back(imu_frames(node, node, node * 1.5f));
+  Payload payload;
+  std::vector<CanFrame> status;
+  ASSERT_TRUE(append_message_frames(NodeStatus{}, message_header<NodeStatus>(20, 0), payload, status).ok());
+  std::vector<float> got;
+  ReceivedTransfer t;
+  const std::size_t frames_each = transfers[0].size();
+  for (std::size_t k = 0; k < frames_each; ++k) {
+    // Nodes 1-4 in order, 5-8 in reverse: transfers end in another order than they began.
+    for (std::size_t n = 0; n < transfers.size(); ++n) {
+      const std::size_t node = n < 4 ? n : 11 - n;
+      if (r.accept(transfers[node][k], 0, t) == FrameVerdict::kTransferComplete) {
+        got.push_back(decode_imu(t).integration_interval);
+      }
+      ASSERT_EQ(r.accept(status[0], 0, t), FrameVerdict::kTransferComplete);
+    }
+  }
+  EXPECT_EQ(got, (std::vector<float>{1.5f, 3.0f, 4.5f, 6.0f, 12.0f, 10.5f, 9.0f, 7.5f}));
+  EXPECT_EQ(r.active_transfers(), 0u);
+  EXPECT_EQ(r.stats().rejected_frames(), 0u);
+  // All eight sessions are free: eight new transfers fit at once.
+  for (uint8_t node = 1; node <= 8; ++node) {
+    EXPECT_EQ(r.accept(imu_frames(node, 9, 1.0f)[0], 0, t), FrameVerdict::kInProgress);
+  }
+}
+
 TEST(CanId, MessageAndServiceIdsRoundTrip) {
   TransferHeader message;
   message.priority = 16;
