@@ -111,12 +111,12 @@ void TimerQueue::compact_if_mostly_cancelled() {
   std::make_heap(heap_.begin(), heap_.end(), later);
 }
 
-TimerId TimerQueue::add(int64_t first_us, int64_t period_us, std::function<void()> fn) {
+TimerId TimerQueue::add(int64_t first_us, int64_t period_us, std::function<void()>&& fn) {
   const uint32_t slot = take_slot();
   const TimerId id = (next_serial_++ << kSlotBits) | slot;
   slots_[slot].id = id;
   slots_[slot].period_us = period_us;
-  slots_[slot].fn = std::move(fn);
+  slots_[slot].fn.swap(fn);  // the free slot's callable is empty
   ++live_;
   push_entry(first_us, id);
   return id;
@@ -137,44 +137,55 @@ std::optional<int64_t> TimerQueue::next_time_us() const {
 }
 
 std::optional<TimerQueue::Due> TimerQueue::pop_due(int64_t t_us) {
+  std::optional<Due> due(std::in_place);
+  if (!pop_due(t_us, *due)) due.reset();
+  return due;
+}
+
+bool TimerQueue::pop_due(int64_t t_us, Due& due) {
   drop_cancelled_top();
   Entry entry{};
+  bool rearmed = false;
   if (fifo_first()) {
-    if (fifo_[fifo_head_].time_us > t_us) return std::nullopt;
+    if (fifo_[fifo_head_].time_us > t_us) return false;
     entry = fifo_[fifo_head_++];
   } else if (has_head_) {
-    if (head_.time_us > t_us) return std::nullopt;
+    if (head_.time_us > t_us) return false;
     entry = head_;
     has_head_ = false;
   } else {
-    if (heap_.empty() || heap_.front().time_us > t_us) return std::nullopt;
+    if (heap_.empty() || heap_.front().time_us > t_us) return false;
     entry = heap_.front();
     const int64_t period_us = slots_[entry.id & kSlotMask].period_us;
-    current_us_ = entry.time_us;
     if (period_us > 0) {
       // Re-armed in place: one pass down the heap instead of a pop and a push.
       heap_.front() = Entry{entry.time_us + period_us, next_seq_++, entry.id};
       sift_top_down();
-      Slot& slot = slots_[entry.id & kSlotMask];
-      return Due{entry.id, entry.time_us, period_us, std::move(slot.fn)};
+      rearmed = true;
+    } else {
+      std::pop_heap(heap_.begin(), heap_.end(), later);
+      heap_.pop_back();
     }
-    std::pop_heap(heap_.begin(), heap_.end(), later);
-    heap_.pop_back();
   }
   current_us_ = entry.time_us;
   Slot& slot = slots_[entry.id & kSlotMask];
-  if (slot.period_us > 0) push_entry(entry.time_us + slot.period_us, entry.id);
-  return Due{entry.id, entry.time_us, slot.period_us, std::move(slot.fn)};
+  if (slot.period_us > 0 && !rearmed) push_entry(entry.time_us + slot.period_us, entry.id);
+  due.id = entry.id;
+  due.time_us = entry.time_us;
+  due.period_us = slot.period_us;
+  due.fn.swap(slot.fn);  // `due` came back from finish() empty
+  return true;
 }
 
 void TimerQueue::finish(Due& due) {
   const uint32_t slot = static_cast<uint32_t>(due.id & kSlotMask);
-  if (slot >= slots_.size() || slots_[slot].id != due.id) return;  // cancelled while it ran
-  if (due.period_us > 0) {
-    slots_[slot].fn = std::move(due.fn);
-  } else {
+  const bool live = slot < slots_.size() && slots_[slot].id == due.id;  // not cancelled while it ran
+  if (live && due.period_us > 0) {
+    slots_[slot].fn.swap(due.fn);
+  } else if (live) {
     release_slot(slot);
   }
+  due.fn = nullptr;  // a one-shot's callable (or a cancelled one's) goes now, not at the next pop
 }
 
 }  // namespace a3::common

@@ -29,15 +29,19 @@ class TimerQueue {
     std::function<void()> fn;
   };
 
-  TimerId add(int64_t first_us, int64_t period_us, std::function<void()> fn);
+  // Takes fn's callable (fn is left empty).
+  TimerId add(int64_t first_us, int64_t period_us, std::function<void()>&& fn);
   void cancel(TimerId id);
   // Earliest pending time, if any.
   std::optional<int64_t> next_time_us() const;
   // Removes the earliest timer due at or before t_us and returns it; a periodic timer is
   // re-armed for its next period before its callback runs. Returns nothing when none is due.
   std::optional<Due> pop_due(int64_t t_us);
+  // The same into `due` (empty, as finish() leaves it; the callable is swapped in from the
+  // timer's slot); false when none is due.
+  bool pop_due(int64_t t_us, Due& due);
   // Called after a popped timer's callback ran (or threw): frees a one-shot, gives a periodic
-  // timer (unless cancelled meanwhile) its callback back. Until then a periodic timer's next
+  // timer (unless cancelled meanwhile) its callback back; `due` is left empty, ready for reuse. Until then a periodic timer's next
   // period must not be popped (executors do not run the queue from inside a callback).
   void finish(Due& due);
   std::size_t size() const { return live_; }
