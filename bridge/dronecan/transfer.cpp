@@ -62,24 +62,24 @@ void append_transfer_frames_seeded(const TransferHeader& header, uint16_t crc_se
     return;
   }
   const uint16_t crc = crc16_ccitt_false(payload, size, crc_seed);
-  // The CRC travels as the first two bytes of the stream, low byte first.
-  std::size_t offset = 0;  // in the stream CRC + payload
-  const std::size_t stream_size = size + 2;
-  while (offset < stream_size) {
-    const std::size_t chunk = std::min<std::size_t>(7, stream_size - offset);
-    for (std::size_t i = 0; i < chunk; ++i) {
-      const std::size_t at = offset + i;
-      frame.data[i] = at == 0   ? static_cast<uint8_t>(crc & 0xFF)
-                      : at == 1 ? static_cast<uint8_t>(crc >> 8)
-                                : payload[at - 2];
-    }
+  // The CRC travels as the first two bytes of the stream, low byte first: the first frame
+  // holds it and 5 payload bytes, every other frame up to 7.
+  frame.data[0] = static_cast<uint8_t>(crc & 0xFF);
+  frame.data[1] = static_cast<uint8_t>(crc >> 8);
+  std::size_t offset = 0;  // in the payload
+  std::size_t room = 5, at = 2;
+  while (offset < size) {
+    const std::size_t chunk = std::min(room, size - offset);
+    std::copy(payload + offset, payload + offset + chunk, frame.data.begin() + static_cast<std::ptrdiff_t>(at));
     offset += chunk;
-    tail.end_of_transfer = offset == stream_size;
-    frame.data[chunk] = tail.pack();
-    frame.size = static_cast<uint8_t>(chunk + 1);
+    tail.end_of_transfer = offset == size;
+    frame.data[at + chunk] = tail.pack();
+    frame.size = static_cast<uint8_t>(at + chunk + 1);
     out.push_back(frame);
     tail.start_of_transfer = false;
     tail.toggle = !tail.toggle;
+    room = 7;
+    at = 0;
   }
 }
 
