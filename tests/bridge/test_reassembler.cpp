@@ -32,6 +32,14 @@ class ReassemblerTest : public ::testing::Test {
     return frames;
   }
 
+  // A single-frame ArmingStatus from node 3, a type the fixture's table does not list.
+  std::vector<CanFrame> arming_frames() {
+    Payload payload;
+    std::vector<CanFrame> frames;
+    EXPECT_TRUE(append_message_frames(ArmingStatus{255}, message_header<ArmingStatus>(3, 0), payload, frames).ok());
+    return frames;
+  }
+
   AhrsRawImu decode_imu(const ReceivedTransfer& t) {
     AhrsRawImu imu;
     EXPECT_TRUE(decode_payload(t.payload, t.size, imu).ok());
@@ -212,14 +220,12 @@ TEST_F(ReassemblerTest, SessionTableIsBounded) {
 
 TEST_F(ReassemblerTest, UnknownTypesAreIgnoredAndSingleFramesNeedToggleZero) {
   TransferReassembler r(table_);
-  Payload payload;
-  std::vector<CanFrame> frames;
-  ASSERT_TRUE(append_message_frames(ArmingStatus{255}, message_header<ArmingStatus>(3, 0), payload,
-                                    frames).ok());
+  std::vector<CanFrame> frames = arming_frames();
   ReceivedTransfer t;
   EXPECT_EQ(r.accept(frames[0], 0, t), FrameVerdict::kIgnored);
   EXPECT_EQ(r.stats().ignored_frames, 1u);
 
+  Payload payload;
   frames.clear();
   ASSERT_TRUE(append_message_frames(NodeStatus{}, message_header<NodeStatus>(3, 31), payload,
                                     frames).ok());
@@ -233,10 +239,7 @@ TEST_F(ReassemblerTest, UnknownTypesAreIgnoredAndSingleFramesNeedToggleZero) {
 // A receiver learns a type after frames of it were ignored: from then on they arrive.
 TEST_F(ReassemblerTest, ATypeAddedLaterIsReceivedFromThenOn) {
   TransferReassembler r(table_);
-  Payload payload;
-  std::vector<CanFrame> frames;
-  ASSERT_TRUE(append_message_frames(ArmingStatus{255}, message_header<ArmingStatus>(3, 0), payload,
-                                    frames).ok());
+  const std::vector<CanFrame> frames = arming_frames();
   ReceivedTransfer t;
   EXPECT_EQ(r.accept(frames[0], 0, t), FrameVerdict::kIgnored);
   EXPECT_EQ(r.accept(imu_frames(4, 0, 1.0f)[0], 0, t), FrameVerdict::kInProgress);
