@@ -32,12 +32,13 @@ class ReassemblerTest : public ::testing::Test {
     return frames;
   }
 
-  // A single-frame ArmingStatus from node 3, a type the fixture's table does not list.
-  std::vector<CanFrame> arming_frames() {
+  // The one frame of an ArmingStatus from node 3, a type the fixture's table does not list
+  // (at() throws, failing the test, if it could not be encoded).
+  CanFrame arming_frame() {
     Payload payload;
     std::vector<CanFrame> frames;
     EXPECT_TRUE(append_message_frames(ArmingStatus{255}, message_header<ArmingStatus>(3, 0), payload, frames).ok());
-    return frames;
+    return frames.at(0);
   }
 
   AhrsRawImu decode_imu(const ReceivedTransfer& t) {
@@ -220,13 +221,12 @@ TEST_F(ReassemblerTest, SessionTableIsBounded) {
 
 TEST_F(ReassemblerTest, UnknownTypesAreIgnoredAndSingleFramesNeedToggleZero) {
   TransferReassembler r(table_);
-  std::vector<CanFrame> frames = arming_frames();
   ReceivedTransfer t;
-  EXPECT_EQ(r.accept(frames[0], 0, t), FrameVerdict::kIgnored);
+  EXPECT_EQ(r.accept(arming_frame(), 0, t), FrameVerdict::kIgnored);
   EXPECT_EQ(r.stats().ignored_frames, 1u);
 
   Payload payload;
-  frames.clear();
+  std::vector<CanFrame> frames;
   ASSERT_TRUE(append_message_frames(NodeStatus{}, message_header<NodeStatus>(3, 31), payload,
                                     frames).ok());
   EXPECT_EQ(r.accept(frames[0], 0, t), FrameVerdict::kTransferComplete);
@@ -239,13 +239,13 @@ TEST_F(ReassemblerTest, UnknownTypesAreIgnoredAndSingleFramesNeedToggleZero) {
 // A receiver learns a type after frames of it were ignored: from then on they arrive.
 TEST_F(ReassemblerTest, ATypeAddedLaterIsReceivedFromThenOn) {
   TransferReassembler r(table_);
-  const std::vector<CanFrame> frames = arming_frames();
+  const CanFrame arming = arming_frame();
   ReceivedTransfer t;
-  EXPECT_EQ(r.accept(frames[0], 0, t), FrameVerdict::kIgnored);
+  EXPECT_EQ(r.accept(arming, 0, t), FrameVerdict::kIgnored);
   EXPECT_EQ(r.accept(imu_frames(4, 0, 1.0f)[0], 0, t), FrameVerdict::kInProgress);
-  EXPECT_EQ(r.accept(frames[0], 0, t), FrameVerdict::kIgnored);
+  EXPECT_EQ(r.accept(arming, 0, t), FrameVerdict::kIgnored);
   table_.add_message<ArmingStatus>();
-  EXPECT_EQ(r.accept(frames[0], 0, t), FrameVerdict::kTransferComplete);
+  EXPECT_EQ(r.accept(arming, 0, t), FrameVerdict::kTransferComplete);
   EXPECT_EQ(t.type, table_.find(TransferKind::kMessage, ArmingStatus::kType.default_dtid));
 }
 
