@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "common/csv_text.hpp"
 #include "common/json_text.hpp"
 
 namespace a3::eval {
@@ -54,16 +55,6 @@ std::vector<std::string> cells(const ModelSummary& r, bool exact) {
           std::to_string(r.total_attempt_calls),
           num(r.mean_attempts_used),
           num(r.call_efficiency)};
-}
-
-std::string csv_cell(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
 }
 
 nlohmann::ordered_json row_json(const ModelSummary& r) {
@@ -131,7 +122,7 @@ void write_leaderboard(std::ostream& out, const std::vector<ModelSummary>& rows,
       out << "\n";
       for (const auto& row : rows) {
         const auto values = cells(row, true);
-        for (std::size_t c = 0; c < values.size(); ++c) out << (c ? "," : "") << csv_cell(values[c]);
+        for (std::size_t c = 0; c < values.size(); ++c) out << (c ? "," : "") << common::csv_cell(values[c]);
         out << "\n";
       }
       return;

@@ -1,48 +1,23 @@
 // gnuplot figures of the leaderboard.
 #include "eval/leaderboard_plots.hpp"
 
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <fcntl.h>
-
-#include <cerrno>
-#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 #include "common/atomic_file.hpp"
+#include "common/gnuplot.hpp"
 #include "common/png_output.hpp"
 #include "eval/leaderboard_format.hpp"
-
-extern char** environ;
 
 namespace a3::eval {
 namespace fs = std::filesystem;
 namespace {
 
-// gnuplot string literal in single quotes (no escapes inside single quotes except '').
-std::string quoted(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) {
-    out += c;
-    if (c == '\'') out += '\'';
-  }
-  return out + "'";
-}
-
-std::string label_of(const std::string& model) {
-  std::string label;
-  for (char c : model) label += (c == '\t' || c == '\n' || c == '"') ? ' ' : c;
-  return "\"" + label + "\"";
-}
-
 std::string script(const fs::path& dir) {
-  const std::string data = quoted((dir / "leaderboard.tsv").string());
+  const std::string data = common::gnuplot_string((dir / "leaderboard.tsv").string());
   // Drawn into "<name><tmp_suffix>" when gnuplot is given tmp_suffix (write_leaderboard_plots).
-  auto out = [&](const char* name) { return quoted((dir / name).string()) + ".tmp_suffix"; };
+  auto out = [&](const char* name) { return common::gnuplot_string((dir / name).string()) + ".tmp_suffix"; };
   std::ostringstream gp;
   gp << "# a3rig leaderboard figures; data columns: see the header of leaderboard.tsv\n"
      << "if (!exists('tmp_suffix')) tmp_suffix = ''\n"
@@ -90,42 +65,13 @@ std::string leaderboard_tsv(const std::vector<ModelSummary>& rows) {
   data << "# model\tdomain\tmean\tci95\talpha3_rel\talpha3_per_1k_tokens\talpha3_per_second"
           "\tmean_gen_time_s\tmean_total_tokens\n";
   for (const auto& r : rows) {
-    data << label_of(r.model) << "\t" << r.domain << "\t" << format_double(r.mean) << "\t"
+    data << common::gnuplot_data_label(r.model) << "\t" << r.domain << "\t" << format_double(r.mean) << "\t"
          << format_double(r.ci95) << "\t" << format_double(r.alpha3_rel) << "\t"
          << format_double(r.alpha3_per_1k_tokens) << "\t" << format_double(r.alpha3_per_second)
          << "\t" << format_double(r.mean_gen_time_s) << "\t"
          << format_double(r.mean_total_tokens) << "\n";
   }
   return data.str();
-}
-
-void run_gnuplot(const fs::path& script_path, const fs::path& log_path, const std::string& tmp_suffix) {
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_path.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  std::string program = "gnuplot";
-  std::string script_arg = script_path.string();
-  std::string option = "-e";
-  std::string suffix_arg = "tmp_suffix=" + quoted(tmp_suffix);
-  char* argv[] = {program.data(), option.data(), suffix_arg.data(), script_arg.data(), nullptr};
-  pid_t pid = 0;
-  const int spawn_error = ::posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv, environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawn_error != 0) {
-    throw std::runtime_error(std::string("cannot run gnuplot (") + std::strerror(spawn_error) +
-                             "); install it with: apt-get install gnuplot-nox");
-  }
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    std::ifstream log(log_path);
-    std::stringstream text;
-    text << log.rdbuf();
-    throw std::runtime_error("gnuplot failed on " + script_path.string() + ": " + text.str());
-  }
 }
 
 }  // namespace
@@ -147,10 +93,11 @@ void write_leaderboard_plots(const fs::path& dir, const std::vector<ModelSummary
   const fs::path script_path = abs_dir / "plots.gp";
   common::write_file_atomically(script_path, script(abs_dir));
   try {
-    run_gnuplot(script_path, abs_dir / "gnuplot.log", common::temporary_png_suffix());
+    common::run_gnuplot(script_path, abs_dir / "gnuplot.log",
+                        {"tmp_suffix=" + common::gnuplot_string(common::temporary_png_suffix())});
     for (const auto& name : leaderboard_plot_files()) common::commit_png(common::temporary_png_path(abs_dir / name), abs_dir / name);
   } catch (...) {
-    for (const auto& name : leaderboard_plot_files()) ::unlink(common::temporary_png_path(abs_dir / name).c_str());
+    for (const auto& name : leaderboard_plot_files()) std::filesystem::remove(common::temporary_png_path(abs_dir / name), ec);
     throw;
   }
 }

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "common/csv_text.hpp"
 #include "common/json_text.hpp"
 #include "eval/leaderboard_format.hpp"
 
@@ -22,16 +23,6 @@ const std::vector<std::string>& columns() {
       "V_alt", "V_nfz", "V_sep", "V_batt", "final_z_m", "alt_min_m", "alt_max_m", "battery_pct",
       "total_tokens", "gen_time_s", "attempts_used", "t_opt"};
   return kColumns;
-}
-
-std::string csv_escape(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
 }
 
 nlohmann::ordered_json row(const ScoredEpisode& e) {
@@ -92,7 +83,7 @@ nlohmann::ordered_json row(const ScoredEpisode& e) {
 
 std::string csv_value(const nlohmann::ordered_json& v) {
   if (v.is_null()) return "";
-  if (v.is_string()) return csv_escape(v.get<std::string>());
+  if (v.is_string()) return common::csv_cell(v.get<std::string>());
   if (v.is_boolean()) return v.get<bool>() ? "1" : "0";
   if (v.is_number_float()) return format_double(v.get<double>());
   return common::dump_json_text(v);

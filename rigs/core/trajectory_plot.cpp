@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/atomic_file.hpp"
+#include "common/gnuplot.hpp"
 #include "common/png_output.hpp"
 #include "common/polygon.hpp"
 #include "rigs/core/episode_writer.hpp"
@@ -29,21 +30,7 @@ std::string trajectory_tsv(const RecordedEpisode& rec) {
   return d.str();
 }
 
-// A gnuplot single-quoted string: quotes doubled, line breaks flattened.
-std::string quoted(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) {
-    if (c == '\'') out += "''";
-    else out += (c == '\n' || c == '\r') ? ' ' : c;
-  }
-  return out + "'";
-}
-
-// A data-block string column: double quotes replaced.
-std::string data_text(std::string text) {
-  std::replace(text.begin(), text.end(), '"', '\'');
-  return "\"" + text + "\"";
-}
+std::string quoted(const std::string& text) { return common::gnuplot_string(text); }
 
 std::string number_text(double value) {
   std::ostringstream t;
@@ -164,7 +151,7 @@ void peer_blocks(std::ostream& gp, const Scenario& s) {
     const auto& path = s.airspace.traffic[i].path;
     gp << "$peer_" << i << " << EOD\n";
     for (std::size_t k = 0; k < path.size(); ++k) {
-      gp << path[k].p_W_m.x() << " " << path[k].p_W_m.y() << " " << data_text(waypoint_label(path, k)) << "\n";
+      gp << path[k].p_W_m.x() << " " << path[k].p_W_m.y() << " " << common::gnuplot_data_label(waypoint_label(path, k)) << "\n";
     }
     gp << "EOD\n";
   }
@@ -266,12 +253,11 @@ std::string write_trajectory_plot(const fs::path& dir, const Scenario& s, const 
   const fs::path png = abs / "trajectory.png";
   const fs::path temporary = common::temporary_png_path(png);
   const fs::path log = abs / "gnuplot.log";
-  const std::string cmd = "gnuplot -e \"png_out='" + temporary.string() + "'\" '" + (abs / "trajectory.gp").string() +
-                          "' > '" + log.string() + "' 2>&1";
-  const int exit_status = std::system(cmd.c_str());
-  if (exit_status != 0) {
+  try {
+    common::run_gnuplot(abs / "trajectory.gp", log, {"png_out=" + quoted(temporary.string())});
+  } catch (const std::runtime_error&) {
     ::unlink(temporary.c_str());
-    return "gnuplot failed with status " + std::to_string(exit_status) + " (see " + log.string() + ")";
+    return "gnuplot failed (see " + log.string() + ")";
   }
   common::commit_png(temporary, png);
   std::error_code ec;

@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "common/atomic_file.hpp"
+#include "common/csv_text.hpp"
 
 namespace a3::rigs::sweep {
 namespace {
@@ -86,8 +87,8 @@ void write_aggregate_csv(const std::filesystem::path& path, const std::vector<Ag
          "alpha3_ci95_hi,SP_mean,SP_ci95_lo,SP_ci95_hi,successes,success_rate,success_ci95_lo,success_ci95_hi,"
          "mission_time_mean_s\n";
   for (const auto& a : rows) {
-    out << csv_field(a.scenario) << "," << csv_field(a.agent) << "," << csv_field(a.think_time) << ","
-        << number(a.think_time_mean_s) << "," << csv_field(a.slice) << "," << a.n << "," << a.n_missing << ","
+    out << common::csv_cell(a.scenario) << "," << common::csv_cell(a.agent) << "," << common::csv_cell(a.think_time) << ","
+        << number(a.think_time_mean_s) << "," << common::csv_cell(a.slice) << "," << a.n << "," << a.n_missing << ","
         << (a.n ? number(a.alpha3_mean) : "") << "," << interval_fields(a.alpha3_ci) << ","
         << (a.n ? number(a.sp_mean) : "") << "," << interval_fields(a.sp_ci) << "," << a.successes << ","
         << (a.n ? number(a.success_rate) : "") << "," << interval_fields(a.success_ci) << ","

@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "common/atomic_file.hpp"
+#include "common/csv_text.hpp"
 
 namespace a3::rigs::sweep {
 namespace {
@@ -31,7 +32,7 @@ std::string row_line(const ResultRow& r) {
       e ? number(r.to) : "", e ? number(r.sp) : "", e ? number(r.tc) : "", e ? number(r.iq) : "",
       e ? number(r.nr) : "", e ? number(r.cc) : "", number(r.mission_time_s), number(r.wall_time_s), r.episode};
   std::string line;
-  for (std::size_t i = 0; i < fields.size(); ++i) line += (i ? "," : "") + csv_field(fields[i]);
+  for (std::size_t i = 0; i < fields.size(); ++i) line += (i ? "," : "") + common::csv_cell(fields[i]);
   return line;
 }
 
@@ -106,39 +107,6 @@ const std::vector<std::string>& results_columns() {
   return kColumns;
 }
 
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
-  std::string out = "\"";
-  for (const char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
-std::vector<std::string> split_csv_line(const std::string& line) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted) {
-      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-        fields.back() += '"';
-        ++i;
-      } else if (c == '"') {
-        quoted = false;
-      } else {
-        fields.back() += c;
-      }
-    } else if (c == '"') {
-      quoted = true;
-    } else if (c == ',') {
-      fields.emplace_back();
-    } else if (c != '\r') {
-      fields.back() += c;
-    }
-  }
-  if (quoted) throw std::invalid_argument("unterminated quoted field");
-  return fields;
-}
-
 void write_results_csv(const std::filesystem::path& path, const std::vector<ResultRow>& rows) {
   std::ostringstream out;
   const auto& columns = results_columns();
@@ -155,7 +123,7 @@ std::vector<ResultRow> read_results_csv(const std::filesystem::path& path) {
   if (!std::getline(in, line)) throw std::runtime_error(path.string() + ": empty file (expected a header line)");
   std::vector<std::string> header;
   try {
-    header = split_csv_line(line);
+    header = common::csv_fields(line);
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(path.string() + ":1: " + e.what());
   }
@@ -171,7 +139,7 @@ std::vector<ResultRow> read_results_csv(const std::filesystem::path& path) {
     if (line.empty() || line == "\r") continue;
     std::vector<std::string> fields;
     try {
-      fields = split_csv_line(line);
+      fields = common::csv_fields(line);
     } catch (const std::invalid_argument& e) {
       throw std::runtime_error(path.string() + ":" + std::to_string(line_number) + ": " + e.what());
     }

@@ -46,9 +46,4 @@ std::vector<std::filesystem::path> result_files(const std::filesystem::path& out
 // wins over one without, and two different episodes are an error naming both files.
 std::vector<ResultRow> merge_result_files(const std::vector<std::filesystem::path>& files);
 
-// RFC 4180: quoted when it holds a comma, a quote or a line break.
-std::string csv_field(const std::string& text);
-// One line of CSV into fields; throws std::invalid_argument on an unterminated quote.
-std::vector<std::string> split_csv_line(const std::string& line);
-
 }  // namespace a3::rigs::sweep

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "common/atomic_file.hpp"
+#include "common/gnuplot.hpp"
 #include "common/png_output.hpp"
 #include "rigs/sweep/sweep_grid.hpp"
 
@@ -32,10 +33,12 @@ int slice_order(const std::string& slice) {
   return 3;
 }
 
-std::string quoted(const std::filesystem::path& p) {
-  std::string out = "'";
-  for (const char c : p.string()) out += c == '\'' ? std::string("''") : std::string(1, c);
-  return out + "'";
+std::string quoted(const std::filesystem::path& p) { return common::gnuplot_string(p.string()); }
+
+std::string number_text(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
 }
 
 std::string plot_data(std::vector<const AggregateRow*> rows) {
@@ -52,8 +55,8 @@ std::string plot_data(std::vector<const AggregateRow*> rows) {
     const auto [s_lo, s_hi] = band(a->sp_mean, a->sp_ci);
     const auto [r_lo, r_hi] = band(a->success_rate, a->success_ci);
     out << a->think_time_mean_s << " " << a->alpha3_mean << " " << a_lo << " " << a_hi << " " << a->sp_mean << " "
-        << s_lo << " " << s_hi << " " << a->success_rate << " " << r_lo << " " << r_hi << " " << a->n << " \""
-        << a->think_time << "\"\n";
+        << s_lo << " " << s_hi << " " << a->success_rate << " " << r_lo << " " << r_hi << " " << a->n << " "
+        << common::gnuplot_data_label(a->think_time) << "\n";
   }
   return out.str();
 }
@@ -95,11 +98,11 @@ void draw_figure(const std::filesystem::path& dir, const Figure& figure, const S
     gp << "if (!exists('png_out')) png_out = " << quoted(png) << "\n"
        << "set terminal pngcairo size 1650,520 font ',11' noenhanced\n"
        << "set output png_out\n"
-       << "set multiplot layout 1,3 title \"" << figure.first << " — agent " << figure.second
-       << " — n = " << n_text
-       << " episodes per point; bands: 95 % CI (Student t for α³ and SP, Wilson for the success rate); slices "
-          "dodged ±"
-       << dodge_s << " s\"\n"
+       << "set multiplot layout 1,3 title "
+       << common::gnuplot_string(figure.first + " — agent " + figure.second + " — n = " + n_text +
+                                 " episodes per point; bands: 95 % CI (Student t for α³ and SP, Wilson for the "
+                                 "success rate); slices dodged ±" + number_text(dodge_s) + " s")
+       << "\n"
        << "set xlabel 'think time per agent turn, mean (s)'\n"
        << "set xrange [" << -3.0 * dodge_s << ":" << std::max(x_max_s, 1.0) + 3.0 * dodge_s << "]\n"
        << "set yrange [-0.03:1.03]\nset grid\nset key below horizontal\n"
@@ -116,7 +119,7 @@ void draw_figure(const std::filesystem::path& dir, const Figure& figure, const S
         gp << (first ? "" : ", \\\n     ") << quoted(path) << " using " << x << ":" << column + 1 << ":"
            << column + 2 << " with filledcurves lc rgb '" << colour << "' notitle, \\\n     " << quoted(path)
            << " using " << x << ":" << column << " with linespoints lw 2 pt " << point_type[order]
-           << " ps 0.9 dt " << order + 1 << " lc rgb '" << colour << "' title '" << slice << "'";
+           << " ps 0.9 dt " << order + 1 << " lc rgb '" << colour << "' title " << common::gnuplot_string(slice);
         first = false;
       }
       gp << "\n";
@@ -127,9 +130,9 @@ void draw_figure(const std::filesystem::path& dir, const Figure& figure, const S
   const auto log = dir / (stem + ".gnuplot.log");
   std::filesystem::remove(png);  // a PNG left from an earlier run must not pass for this one
   const auto temporary = common::temporary_png_path(png);
-  const std::string command =
-      "gnuplot -e \"png_out=" + quoted(temporary) + "\" " + quoted(script) + " > " + quoted(log) + " 2>&1";
-  if (std::system(command.c_str()) != 0) {
+  try {
+    common::run_gnuplot(script, log, {"png_out=" + quoted(temporary)});
+  } catch (const std::runtime_error&) {
     ::unlink(temporary.c_str());
     add_problem(outcome, "gnuplot failed on " + script.string() + " (see " + log.string() + ")");
     return;
@@ -149,7 +152,7 @@ PlotOutcome write_sweep_plots(const std::filesystem::path& plots_dir, const std:
   for (const auto& a : rows) {
     if (a.n > 0) figures[{a.scenario, a.agent}][a.slice].push_back(&a);
   }
-  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
+  if (!common::gnuplot_found()) {
     outcome.problem = "gnuplot not found (Debian package gnuplot-nox); aggregate.csv holds the numbers";
     return outcome;
   }

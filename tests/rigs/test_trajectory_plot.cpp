@@ -132,7 +132,10 @@ TEST(TrajectoryPlotScript, QuotesInIdsCannotBreakTheScript) {
   Scenario s = world();
   s.airspace.no_fly_zones[0].id = "St 'Mary'";
   const std::string script = trajectory_plot_script("/tmp/plot", s, flight());
-  EXPECT_NE(script.find("'St ''Mary'' 0 m to 500 m'"), std::string::npos);
+  EXPECT_NE(script.find(R"('St '."'".'Mary'."'".' 0 m to 500 m')"), std::string::npos);
+  if (std::system("gnuplot --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot is not installed";
+  a3::test::TempDir dir("trajectory-plot-quotes");
+  EXPECT_EQ(write_trajectory_plot(dir.path(), s, flight()), "") << "gnuplot reads the quoted id";
 }
 
 TEST(TrajectoryPlotPng, GnuplotDrawsTheWorld) {

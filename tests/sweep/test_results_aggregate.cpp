@@ -6,6 +6,7 @@
 #include <fstream>
 #include <map>
 
+#include "common/csv_text.hpp"
 #include "rigs/sweep/aggregate.hpp"
 #include "rigs/sweep/results_table.hpp"
 #include "rigs/sweep/sweep_report.hpp"
@@ -69,10 +70,10 @@ std::vector<std::map<std::string, std::string>> read_table(const fs::path& path)
   std::ifstream in(path);
   std::string line;
   std::getline(in, line);
-  const auto header = split_csv_line(line);
+  const auto header = common::csv_fields(line);
   std::vector<std::map<std::string, std::string>> rows;
   while (std::getline(in, line)) {
-    const auto fields = split_csv_line(line);
+    const auto fields = common::csv_fields(line);
     EXPECT_EQ(fields.size(), header.size()) << line;
     std::map<std::string, std::string> row;
     for (std::size_t i = 0; i < header.size() && i < fields.size(); ++i) row[header[i]] = fields[i];
