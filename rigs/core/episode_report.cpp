@@ -11,7 +11,7 @@
 #include "common/json_file.hpp"
 #include "common/json_text.hpp"
 #include "rigs/core/episode_score.hpp"
-#include "rigs/core/html_text.hpp"
+#include "rigs/core/html_page.hpp"
 #include "rigs/core/report_assets.hpp"
 #include "rigs/core/report_world.hpp"
 
@@ -105,11 +105,16 @@ std::string episode_report_html(const nlohmann::json& episode, const std::option
                                {"episode", episode},
                                {"world", scenario ? report_world_json(*scenario) : nlohmann::json(nullptr)},
                                {"score", episode_score_json(score_episode(episode))}};
-  return filled(report_page_template(), {{"A3_TITLE", html_escaped(title)},
-                                          {"A3_CSS", std::string(report_style())},
-                                          {"A3_DATA", script_safe_json(data)},
-                                          {"A3_D3", read_d3()},
-                                          {"A3_JS", std::string(report_script())}});
+  // The rig's own parts first: the policy is computed over this skeleton's inline scripts and
+  // style, which hold no episode text; the title and the data go in after.
+  const std::string skeleton = filled(report_page_template(), {{"A3_CSS", std::string(report_style())},
+                                                               {"A3_D3", read_d3()},
+                                                               {"A3_JS", std::string(report_script())}});
+  const std::string policy = content_security_policy(inline_elements(skeleton, "script"),
+                                                     inline_elements(skeleton, "style"), "");
+  return filled(skeleton, {{"A3_CSP", content_security_policy_meta(policy)},
+                           {"A3_TITLE", html_escaped(title)},
+                           {"A3_DATA", script_safe_json(data)}});
 }
 
 void write_episode_report(const std::filesystem::path& out, const nlohmann::json& episode,

@@ -154,13 +154,19 @@
         .append('title').text(e.kind + ' at ' + fmt(e.t_s, 1) + ' s: ' + (e.detail || ''));
     });
   }
+  // A swatch and its label; the label is text, never markup (it may be an episode's event kind).
+  function legendEntry(legend, colour, opacity, label) {
+    var entry = legend.append('span');
+    entry.append('i').style('background', colour).style('opacity', opacity);
+    entry.node().appendChild(document.createTextNode(label));
+  }
   function drawMapLegend() {
     var legend = d3.select('#map-legend');
     var kinds = d3.set(events.map(function (e) { return e.kind; })).values();
-    kinds.forEach(function (k) { legend.append('span').html('<i style="background:' + eventColour(k) + '"></i>' + k); });
-    legend.append('span').html('<i style="background:#d62728;opacity:.5"></i>no-fly zone');
-    legend.append('span').html('<i style="background:#9467bd"></i>peer (plan)');
-    legend.append('span').html('<i style="background:#2ca02c"></i>objective');
+    kinds.forEach(function (k) { legendEntry(legend, eventColour(k), 1, k); });
+    legendEntry(legend, '#d62728', 0.5, 'no-fly zone');
+    legendEntry(legend, '#9467bd', 1, 'peer (plan)');
+    legendEntry(legend, '#2ca02c', 1, 'objective');
     legend.append('span').text('track: one colour per agent turn');
   }
   function drawMap() {
@@ -278,6 +284,12 @@
   }
 
   // ---- score and dialogue --------------------------------------------------------------
+  // Every value goes into the page as text (d3's .text), never as markup.
+  function tableRow(table, cellTag, values) {
+    var tr = table.append('tr');
+    values.forEach(function (v) { tr.append(cellTag).text(v); });
+    return tr;
+  }
   function drawScore() {
     var s = data.score || {};
     var el = d3.select('#score');
@@ -288,21 +300,21 @@
     var rows = [['α³', s.alpha3, 'the composite'], ['TO', s.pillars.TO, 'task outcome'], ['SP', s.pillars.SP, 'safety policy'],
       ['TC', s.pillars.TC, 'tool consistency'], ['IQ', s.pillars.IQ, 'interaction quality'], ['NR', s.pillars.NR, 'network robustness'], ['CC', s.pillars.CC, 'communication cost']];
     var table = el.append('table').attr('id', 'score-table');
-    table.append('tr').html('<th>pillar</th><th>score</th><th>what</th>');
-    rows.forEach(function (r) { table.append('tr').html('<td>' + r[0] + '</td><td>' + fmt(r[1], 4) + '</td><td>' + r[2] + '</td>'); });
+    tableRow(table, 'th', ['pillar', 'score', 'what']);
+    rows.forEach(function (r) { tableRow(table, 'td', [r[0], fmt(r[1], 4), r[2]]); });
     el.append('p').text('computed from: ' + Object.keys(s.inputs).map(function (k) { return k + ' = ' + JSON.stringify(s.inputs[k]); }).join(', '));
   }
   function pre(cell, value) { cell.append('pre').text(value === undefined ? '' : JSON.stringify(value, null, 1)); }
   function drawDialogue() {
     var table = d3.select('#dialogue').append('table').attr('id', 'dialogue-table');
-    table.append('tr').html('<th>turn</th><th>time</th><th>speaker / intent</th><th>text</th><th>actions</th><th>observations</th><th>net</th>');
+    tableRow(table, 'th', ['turn', 'time', 'speaker / intent', 'text', 'actions', 'observations', 'net']);
     dialogue.forEach(function (turn, i) {
       var tr = table.append('tr').attr('class', 'turn-row').attr('data-index', i);
       var r = rigTurns[i] || {};
       tr.append('td').text(turn.turn);
       tr.append('td').text(timed ? fmt(r.started_s, 1) + ' s' + (turn.speaker === 'agent' ? '\nthink ' + fmt(r.think_time_s, 2) + ' s' : '') : '');
       var who = tr.append('td');
-      who.append('div').attr('class', 'speaker-' + turn.speaker).text(turn.speaker);
+      who.append('div').attr('class', turn.speaker === 'agent' ? 'speaker-agent' : 'speaker-user').text(turn.speaker);
       who.append('div').text(turn.intent || '');
       tr.append('td').text(r.text || turn.text || '');
       pre(tr.append('td'), (turn.actions || []).map(function (a) { return { name: a.name, type: a.type, args: a.args }; }));

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "common/atomic_file.hpp"
-#include "rigs/core/html_text.hpp"
+#include "rigs/core/html_page.hpp"
 
 namespace a3::rigs::sweep {
 namespace {
@@ -26,19 +26,32 @@ std::string with_interval(double mean, const std::optional<Interval>& ci, int di
 }
 
 // The cell's report when the run wrote one, else its episode; relative to the sweep's folder.
-std::string cell_link(const fs::path& out_dir, const ResultRow& row) {
-  if (row.episode.empty()) return "";
+fs::path cell_file(const fs::path& out_dir, const ResultRow& row) {
+  if (row.episode.empty()) return {};
   const fs::path report = fs::path(row.episode).parent_path() / "report.html";
   std::error_code ec;
-  return fs::is_regular_file(out_dir / report, ec) ? report.generic_string() : fs::path(row.episode).generic_string();
+  return fs::is_regular_file(out_dir / report, ec) ? report : fs::path(row.episode);
+}
+
+// The cell's link, or "–" when it has no file or its path leaves the sweep's folder.
+std::string cell_link(const fs::path& out_dir, const ResultRow& row) {
+  const fs::path file = cell_file(out_dir, row);
+  if (file.empty()) return "–";
+  try {
+    return "<a href=\"" + html_escaped(relative_href(file)) + "\">" +
+           (file.filename() == "report.html" ? "report" : "episode") + "</a>";
+  } catch (const std::invalid_argument&) {
+    return "–";
+  }
 }
 
 void plots_section(std::ostream& html, const fs::path& out_dir, const std::vector<fs::path>& pngs) {
   html << "<h2>Plots</h2>\n";
   for (const fs::path& png : pngs) {
-    const std::string rel = fs::relative(png, out_dir).generic_string();
-    html << "<figure><img class=\"plot\" src=\"" << html_escaped(rel) << "\" alt=\"" << html_escaped(rel) << "\"><figcaption>"
-         << html_escaped(rel) << "</figcaption></figure>\n";
+    const fs::path rel = fs::relative(png, out_dir);
+    html << "<figure><img class=\"plot\" src=\"" << html_escaped(relative_href(rel)) << "\" alt=\""
+         << html_escaped(rel.generic_string()) << "\"><figcaption>" << html_escaped(rel.generic_string())
+         << "</figcaption></figure>\n";
   }
 }
 
@@ -58,12 +71,11 @@ void cells_section(std::ostream& html, const fs::path& out_dir, const std::vecto
   html << "<h2>Cells</h2>\n<table id=\"cells\"><tr><th>scenario</th><th>agent</th><th>think time</th><th>slice</th>"
           "<th>seed</th><th>status</th><th>success</th><th>α³</th><th>episode</th></tr>\n";
   for (const ResultRow& r : rows) {
-    const std::string link = cell_link(out_dir, r);
     html << "<tr class=\"cell\"><td>" << html_escaped(r.scenario) << "</td><td>" << html_escaped(r.agent) << "</td><td>"
          << html_escaped(r.think_time) << "</td><td>" << html_escaped(r.slice) << "</td><td>" << r.seed << "</td><td>"
          << html_escaped(r.status) << "</td><td>" << (r.success ? "yes" : "no") << "</td><td>"
          << (r.has_episode ? number(r.alpha3, 4) : "–") << "</td><td>"
-         << (link.empty() ? "–" : "<a href=\"" + html_escaped(link) + "\">" + (link.size() > 11 && link.substr(link.size() - 11) == "report.html" ? "report" : "episode") + "</a>")
+         << cell_link(out_dir, r)
          << "</td></tr>\n";
   }
   html << "</table>\n";
@@ -85,7 +97,10 @@ constexpr const char* kScript =
 std::string sweep_index_html(const fs::path& out_dir, const std::vector<ResultRow>& rows,
                              const std::vector<AggregateRow>& aggregates, const std::vector<fs::path>& pngs) {
   std::ostringstream html;
-  html << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>sweep " << html_escaped(out_dir.filename().string())
+  // Images only from the sweep's own folder (the plots); the page's one script and style by hash.
+  const std::string policy = content_security_policy({kScript}, {kStyle}, "'self'");
+  html << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">" << content_security_policy_meta(policy)
+       << "<title>sweep " << html_escaped(out_dir.filename().string())
        << "</title><style>" << kStyle << "</style><script>" << kScript << "</script></head><body>\n<h1>Sweep: "
        << html_escaped(out_dir.string()) << "</h1>\n<p>" << rows.size() << " cells; results.csv and aggregate.csv beside this page.</p>\n";
   plots_section(html, out_dir, pngs);
