@@ -74,18 +74,24 @@ void close_after_last_response(socket_t sock) {
 
 }  // namespace
 
-GuardedServer::GuardedServer(HttpLimits limits, std::size_t max_body_bytes, RefusalWriter write_refusal)
-    : limits_(limits), max_body_bytes_(max_body_bytes), write_refusal_(std::move(write_refusal)) {
+GuardedServer::GuardedServer(HttpLimits limits, OriginPolicy origins, std::size_t max_body_bytes,
+                             RefusalWriter write_refusal)
+    : limits_(limits), origins_(std::move(origins)), max_body_bytes_(max_body_bytes), write_refusal_(std::move(write_refusal)) {
   check_http_limits(limits_);
+  check_origin_policy(origins_);
   const auto max_threads = static_cast<std::size_t>(limits_.max_connections) * 2;
   new_task_queue = [max_threads] { return new ConnectionThreads(max_threads); };
   set_payload_max_length(max_body_bytes_);
   set_pre_routing_handler([this](const httplib::Request& request, httplib::Response& response) {
+    if (answered_preflight(request, response)) return HandlerResponse::Handled;
     const auto refused = refusal(request);
     if (!refused) return HandlerResponse::Unhandled;
     write_refusal_(request, response, *refused);
     response.set_header("Connection", "close");  // the body, if any, stays unread
     return HandlerResponse::Handled;
+  });
+  set_post_routing_handler([this](const httplib::Request& request, httplib::Response& response) {
+    add_cors_headers(request, response);
   });
   set_logger([](const httplib::Request&, const httplib::Response& response) {
     if (t_connection != nullptr && response.get_header_value("Connection") == "close") {
@@ -100,13 +106,17 @@ std::string_view GuardedServer::current_request_head() {
 
 bool GuardedServer::bind_to_port(const std::string& host, int port, int socket_flags) {
   if (!httplib::Server::bind_to_port(host, port, socket_flags)) return false;
+  origin_check_.emplace(origins_, host, port);
   widen_listen_backlog();
   return true;
 }
 
 int GuardedServer::bind_to_any_port(const std::string& host, int socket_flags) {
   const int port = httplib::Server::bind_to_any_port(host, socket_flags);
-  if (port > 0) widen_listen_backlog();
+  if (port > 0) {
+    origin_check_.emplace(origins_, host, port);
+    widen_listen_backlog();
+  }
   return port;
 }
 
@@ -120,7 +130,35 @@ std::optional<HttpRefusal> GuardedServer::refusal(const httplib::Request& reques
     return HttpRefusal{503, "server busy: more than " + std::to_string(t_connection->max_connections) +
                                 " connections open (--max-connections)", 1.0};
   }
+  if (origin_check_) {
+    auto header = [&request](const char* name) {
+      return request.has_header(name) ? std::optional<std::string>(request.get_header_value(name)) : std::nullopt;
+    };
+    if (auto refused = origin_check_->refusal(header("Host"), header("Origin"))) return refused;
+  }
   return content_length_refusal(request, max_body_bytes_);
+}
+
+bool GuardedServer::answered_preflight(const httplib::Request& request, httplib::Response& response) const {
+  if (request.method != "OPTIONS" || !origin_check_ || !request.has_header("Origin") ||
+      !request.has_header("Access-Control-Request-Method") ||
+      !origin_check_->is_allowed_cross_origin(request.get_header_value("Origin"))) {
+    return false;
+  }
+  response.status = 204;
+  response.set_header("Access-Control-Allow-Methods", "GET, POST, DELETE, OPTIONS");
+  response.set_header("Access-Control-Allow-Headers", origins_.cors_allow_headers);
+  response.set_header("Access-Control-Max-Age", "600");
+  return true;
+}
+
+void GuardedServer::add_cors_headers(const httplib::Request& request, httplib::Response& response) const {
+  if (!origin_check_ || !request.has_header("Origin")) return;
+  const std::string origin = request.get_header_value("Origin");
+  if (!origin_check_->is_allowed_cross_origin(origin)) return;
+  response.set_header("Access-Control-Allow-Origin", origin);
+  response.set_header("Vary", "Origin");
+  if (!origins_.cors_expose_headers.empty()) response.set_header("Access-Control-Expose-Headers", origins_.cors_expose_headers);
 }
 
 bool GuardedServer::process_and_close_socket(socket_t sock) {

@@ -6,9 +6,12 @@
 // connection is answered 408 and closed (DeadlineStream). Before any route: 411 / 400 / 413 for
 // a body without, with a malformed or with a too large Content-Length (request_checks.hpp).
 // Refusals are written by the server's RefusalWriter, in its own error shape. A response with
-// "Connection: close" closes the connection (httplib 0.11 would read on).
+// "Connection: close" closes the connection (httplib 0.11 would read on). Before those, the
+// request's Host and Origin are checked against the address it listens on (origin_policy.hpp):
+// 403 for another host name (DNS rebinding) or a page of a foreign origin; a preflight from an
+// origin the policy allows is answered 204, and that origin's responses carry CORS headers.
 //
-// It takes httplib's pre-routing handler and logger for itself: do not set them.
+// It takes httplib's pre- and post-routing handlers and logger for itself: do not set them.
 #pragma once
 
 #include <httplib.h>
@@ -20,13 +23,15 @@
 #include <string_view>
 
 #include "agent/http/http_limits.hpp"
+#include "agent/http/origin_policy.hpp"
 
 namespace a3::agent::http {
 
 class GuardedServer final : public httplib::Server {
  public:
-  // Throws std::invalid_argument for limits out of range (check_http_limits).
-  GuardedServer(HttpLimits limits, std::size_t max_body_bytes, RefusalWriter write_refusal);
+  // Throws std::invalid_argument for limits out of range (check_http_limits) or a malformed
+  // origin policy (check_origin_policy).
+  GuardedServer(HttpLimits limits, OriginPolicy origins, std::size_t max_body_bytes, RefusalWriter write_refusal);
 
   // httplib's, then the listen backlog widened from httplib's fixed 5 to SOMAXCONN: with 5, a
   // burst of connections overflows it and the client's SYN waits out a 1 s retransmission.
@@ -44,10 +49,15 @@ class GuardedServer final : public httplib::Server {
   bool serve_connection(socket_t sock, bool over_limit);
   void widen_listen_backlog();
   std::optional<HttpRefusal> refusal(const httplib::Request& request) const;
+  // 204 with the CORS headers for a preflight from an allowed origin; false for any other request.
+  bool answered_preflight(const httplib::Request& request, httplib::Response& response) const;
+  void add_cors_headers(const httplib::Request& request, httplib::Response& response) const;
   // Writes the 408 for a request whose head or body came too late.
   void send_timeout(socket_t sock, const std::string& message) const;
 
   HttpLimits limits_;
+  OriginPolicy origins_;
+  std::optional<OriginCheck> origin_check_;  // set when bound (it needs the address and port)
   std::size_t max_body_bytes_;
   RefusalWriter write_refusal_;
   std::atomic<int> open_connections_{0};

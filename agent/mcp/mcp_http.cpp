@@ -12,7 +12,6 @@
 #include <deque>
 #include <optional>
 #include <random>
-#include <regex>
 #include <stdexcept>
 
 namespace a3::agent::mcp {
@@ -76,11 +75,6 @@ std::string new_session_id() {
   return id;
 }
 
-bool local_origin(const std::string& origin) {
-  static const std::regex kLocal(R"(^https?://(localhost|127\.0\.0\.1|\[::1\])(:[0-9]+)?/?$)", std::regex::icase);
-  return std::regex_match(origin, kLocal);
-}
-
 bool accepts_event_stream(const httplib::Request& request) {
   if (!request.has_header("Accept")) return true;
   const std::string accept = request.get_header_value("Accept");
@@ -94,35 +88,20 @@ bool accepts_json(const httplib::Request& request) {
          accept.find("application/*") != std::string::npos;
 }
 
-// CORS for a page on a local origin (a browser-based client such as the MCP Inspector in its
-// direct mode): it may call and read the session header. Foreign origins get nothing (and 403).
-void allow_local_origin(const httplib::Request& request, httplib::Response& response) {
-  if (!request.has_header("Origin") || !local_origin(request.get_header_value("Origin"))) return;
-  response.set_header("Access-Control-Allow-Origin", request.get_header_value("Origin"));
-  response.set_header("Access-Control-Expose-Headers", "Mcp-Session-Id");
-  response.set_header("Vary", "Origin");
-}
-
-void answer_preflight(const httplib::Request& request, httplib::Response& response) {
-  if (request.has_header("Origin") && !local_origin(request.get_header_value("Origin"))) {
-    response.status = 403;
-    return;
-  }
-  response.status = 204;
-  response.set_header("Access-Control-Allow-Methods", "POST, GET, DELETE, OPTIONS");
-  response.set_header("Access-Control-Allow-Headers",
-                      "Content-Type, Accept, Mcp-Session-Id, MCP-Protocol-Version, Last-Event-ID, Authorization");
-  response.set_header("Access-Control-Max-Age", "600");
+// The origins the user allowed, with what an MCP client in a page sends and reads.
+http::OriginPolicy browser_policy(http::OriginPolicy policy) {
+  policy.cors_allow_headers = "Content-Type, Accept, Mcp-Session-Id, MCP-Protocol-Version, Last-Event-ID, Authorization";
+  policy.cors_expose_headers = "Mcp-Session-Id";
+  return policy;
 }
 
 // A refusal before any route (408, 411, 400, 413, 503) as a JSON-RPC error without an id.
-void refuse_unrouted(const httplib::Request& request, httplib::Response& response, const http::HttpRefusal& refusal) {
+void refuse_unrouted(const httplib::Request&, httplib::Response& response, const http::HttpRefusal& refusal) {
   refuse(response, refusal.status, refusal.status == 503 ? jsonrpc::kInternalError : jsonrpc::kInvalidRequest,
          refusal.message);
   if (refusal.retry_after_s > 0.0) {
     response.set_header("Retry-After", std::to_string(static_cast<long>(std::ceil(refusal.retry_after_s))));
   }
-  allow_local_origin(request, response);
 }
 
 }  // namespace
@@ -131,7 +110,8 @@ McpHttpTransport::McpHttpTransport(McpRig& rig, McpServerOptions options, McpLog
     : rig_(rig),
       options_(std::move(options)),
       log_(std::move(log)),
-      server_(std::make_unique<http::GuardedServer>(options_.http_limits, kMaxBodyBytes, refuse_unrouted)) {
+      server_(std::make_unique<http::GuardedServer>(options_.http_limits, browser_policy(options_.http_origins),
+                                                    kMaxBodyBytes, refuse_unrouted)) {
   server_->set_tcp_nodelay(true);
   // SO_REUSEADDR only: httplib's default SO_REUSEPORT would let a second server share the port.
   server_->set_socket_options([](socket_t sock) {
@@ -143,8 +123,6 @@ McpHttpTransport::McpHttpTransport(McpRig& rig, McpServerOptions options, McpLog
   server_->Post(path, [this](const httplib::Request& q, httplib::Response& r) { on_post(q, r); });
   server_->Delete(path, [this](const httplib::Request& q, httplib::Response& r) { on_delete(q, r); });
   server_->Get(path, [this](const httplib::Request& q, httplib::Response& r) { on_get(q, r); });
-  server_->Options(path, answer_preflight);
-  server_->set_post_routing_handler(allow_local_origin);
 }
 
 McpHttpTransport::~McpHttpTransport() { stop(); }
@@ -181,11 +159,7 @@ void McpHttpTransport::stop() {
   if (listen_thread_.joinable()) listen_thread_.join();
 }
 
-bool McpHttpTransport::admit_origin_and_version(const httplib::Request& request, httplib::Response& response) {
-  if (request.has_header("Origin") && !local_origin(request.get_header_value("Origin"))) {
-    refuse(response, 403, jsonrpc::kInvalidRequest, "forbidden: Origin '" + request.get_header_value("Origin") + "' is not local");
-    return false;
-  }
+bool McpHttpTransport::admit_protocol_version(const httplib::Request& request, httplib::Response& response) {
   if (request.has_header("MCP-Protocol-Version") && !mcp_version_supported(request.get_header_value("MCP-Protocol-Version"))) {
     refuse(response, 400, jsonrpc::kInvalidRequest, "unsupported MCP-Protocol-Version '" +
            request.get_header_value("MCP-Protocol-Version") + "' (this server speaks 2025-06-18 and 2025-03-26)");
@@ -208,7 +182,7 @@ std::shared_ptr<McpProtocol> McpHttpTransport::admit_session(const httplib::Requ
 }
 
 void McpHttpTransport::on_post(const httplib::Request& request, httplib::Response& response) {
-  if (!admit_origin_and_version(request, response)) return;
+  if (!admit_protocol_version(request, response)) return;
   if (request.get_header_value("Content-Type").find("application/json") == std::string::npos) {
     refuse(response, 415, jsonrpc::kInvalidRequest, "unsupported media type: POST a JSON-RPC message as application/json");
     return;
@@ -272,7 +246,7 @@ void McpHttpTransport::answer(const std::shared_ptr<McpProtocol>& protocol, cons
 }
 
 void McpHttpTransport::on_delete(const httplib::Request& request, httplib::Response& response) {
-  if (!admit_origin_and_version(request, response) || !admit_session(request, response)) return;
+  if (!admit_protocol_version(request, response) || !admit_session(request, response)) return;
   end_session();
   response.status = 200;
 }
@@ -293,7 +267,7 @@ void McpHttpTransport::end_session() {
 }
 
 void McpHttpTransport::on_get(const httplib::Request& request, httplib::Response& response) {
-  if (!admit_origin_and_version(request, response) || !admit_session(request, response)) return;
+  if (!admit_protocol_version(request, response) || !admit_session(request, response)) return;
   response.status = 405;
   response.set_header("Allow", "POST, DELETE");
 }

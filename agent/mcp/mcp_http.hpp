@@ -3,9 +3,10 @@
 // server-initiated stream). Responses are application/json, or a text/event-stream when a
 // tools/call asked for progress. One session per rig: Mcp-Session-Id is issued with the
 // initialize response and required afterwards (400 without, 404 unknown). The MCP-Protocol-Version
-// header must be a supported revision when present (400 otherwise); an Origin that is not local
-// is refused (403); a local one gets CORS headers (and OPTIONS preflights are answered), so a
-// browser page on localhost can be a client. Binds 127.0.0.1 unless told otherwise. Abusive
+// header must be a supported revision when present (400 otherwise). A Host that is not this
+// server's address and an Origin other than its own are refused (403, DNS-rebinding protection);
+// a page on an origin given in options.http_origins (--allow-origin) gets CORS headers and its
+// preflights answered (http/origin_policy.hpp). Binds 127.0.0.1 unless told otherwise. Abusive
 // clients are held off by http::GuardedServer (options.http_limits): a thread per connection up
 // to a limit (503 beyond), head and body deadlines (408), Content-Length required (411; 400
 // malformed; 413 over 8 MiB); those refusals are JSON-RPC errors without an id. A body that is
@@ -48,9 +49,9 @@ class McpHttpTransport {
   void on_post(const httplib::Request& request, httplib::Response& response);
   void on_delete(const httplib::Request& request, httplib::Response& response);
   void on_get(const httplib::Request& request, httplib::Response& response);
-  // Origin and MCP-Protocol-Version, checked first on every method; false (and `response`
-  // filled) when refused.
-  bool admit_origin_and_version(const httplib::Request& request, httplib::Response& response);
+  // MCP-Protocol-Version, checked first on every method; false (and `response` filled) when
+  // refused. (Host and Origin are checked before any route, by http::GuardedServer.)
+  bool admit_protocol_version(const httplib::Request& request, httplib::Response& response);
   // The session named by Mcp-Session-Id; null (and `response` filled: 400 or 404) when refused.
   std::shared_ptr<McpProtocol> admit_session(const httplib::Request& request, httplib::Response& response);
   void open_session(const nlohmann::json& message, httplib::Response& response);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "agent/http/http_limits.hpp"
+#include "agent/http/origin_policy.hpp"
 #include "agent/mcp/mcp_rig.hpp"
 
 #include <functional>
@@ -20,6 +21,7 @@ struct McpServerOptions {
   int http_port = 0;                     // 0: any free port
   std::string http_path = "/mcp";
   http::HttpLimits http_limits;          // connections at once, request head and body deadlines
+  http::OriginPolicy http_origins;       // browser pages allowed besides the server's own; more host names
   std::function<void(const std::string&)> log;  // diagnostics (stderr by default; never stdout)
 };
 

@@ -168,7 +168,7 @@ bool ModelServer::wait_or_stop(double seconds) {
 void ModelServer::start() {
   if (http_) throw std::logic_error("model server: already started");
   http_ = std::make_unique<http::GuardedServer>(
-      options_.http_limits, options_.max_request_bytes,
+      options_.http_limits, options_.http_origins, options_.max_request_bytes,
       [this](const httplib::Request& req, httplib::Response& res, const http::HttpRefusal& refusal) {
         send_refusal(req, res, refusal);
       });

@@ -12,7 +12,8 @@
 // the last one at the full draw. stop() ends waiting answers and streams at once.
 // Each connection is served on a thread of its own, up to options.http_limits.max_connections (503
 // beyond); a request's head and body must arrive within their deadlines (408), its body must come
-// with a Content-Length (411; 400 malformed; 413 too large): agent/http/guarded_server.hpp. The
+// with a Content-Length (411; 400 malformed; 413 too large), its Host must be this server's and
+// its Origin, if any, this server's or one in options.http_origins (403): agent/http/guarded_server.hpp. The
 // responder is called under a lock (responders need not be thread-safe), the latency waits are not.
 #pragma once
 
@@ -31,6 +32,7 @@
 #include <nlohmann/json.hpp>
 
 #include "agent/http/http_limits.hpp"
+#include "agent/http/origin_policy.hpp"
 #include "agent/model_server/latency_model.hpp"
 #include "agent/model_server/model_responder.hpp"
 #include "common/rng.hpp"
@@ -65,6 +67,7 @@ struct ModelServerOptions {
   std::string require_key_env;       // an environment variable holding the key clients must send
   std::vector<std::string> model_ids;  // GET /v1/models lists these (default: the responder's name)
   http::HttpLimits http_limits;      // connections at once (a thread each), head and body deadlines
+  http::OriginPolicy http_origins;   // browser pages allowed besides the server's own; more host names
   bool quiet = false;                // no line per request
   std::size_t max_request_bytes = 32u << 20;
 };

@@ -30,6 +30,7 @@ struct McpArgs {
   ScenarioRunFlags flags;
   std::string http;  // "" : stdio; else HOST:PORT
   agent::http::HttpLimits http_limits;
+  agent::http::OriginPolicy http_origins;
   std::vector<CLI::Option*> http_limit_flags;
 };
 
@@ -92,6 +93,7 @@ int serve(McpArgs& a) {
     if (flag->count() > 0 && a.http.empty()) throw std::invalid_argument(flag->get_name() + ": applies to --http only");
   }
   server_options.http_limits = a.http_limits;
+  server_options.http_origins = a.http_origins;
   agent::mcp::McpServer server(*agent, server_options);
   to_stderr("a3rig mcp: scenario " + scenario.name + " (" + scenario.source + "), think time " + o.think_time + ", " +
             (o.runtime == Runtime::kVirtual ? "virtual time" : "real time") + ", seed " + std::to_string(o.seed) +
@@ -149,7 +151,8 @@ A3_REGISTER_COMMAND("12-mcp", [](CLI::App& app) {
       "Exit status (as a3rig run): 0 the episode was written, 2 bad usage or input, 3 interrupted (the client left "
       "mid-dialogue, or Ctrl-C; episode written), 4 a node failed or froze (episode written), 5 the real-time "
       "contract was broken (episode written), 6 the client never made a vehicle or A2A call (status agent_failed; "
-      "episode written), 8 an output could not be written (status output_failed: <file>: <reason>).");
+      "episode written), 8 an output could not be written (status output_failed: <file>: <reason>), 9 the vehicle "
+      "never left the ground on a mission with objectives (status never_flew; episode written).");
   add_scenario_run_flags(*cmd, args->flags);
   cmd->add_option("--http", args->http,
                   "serve Streamable HTTP on HOST:PORT (e.g. 127.0.0.1:8765; endpoint /mcp) instead of stdio; a POST "
@@ -157,6 +160,7 @@ A3_REGISTER_COMMAND("12-mcp", [](CLI::App& app) {
                   "or body comes too late a 408, a connection beyond --max-connections a 503 (JSON-RPC errors; "
                   "--max-connections, --header-timeout and --body-timeout apply with --http only)");
   args->http_limit_flags = add_http_limit_flags(*cmd, args->http_limits);
+  for (CLI::Option* flag : add_http_origin_flags(*cmd, args->http_origins)) args->http_limit_flags.push_back(flag);
   cmd->callback([args] { command_exit_status() = serve(*args); });
 });
 

@@ -228,6 +228,7 @@ A3_REGISTER_COMMAND("50-serve-model", [](CLI::App& app) {
                   "model ids GET /v1/models lists and GET /v1/models/{id} knows (repeatable; default the responder's "
                   "name)");
   add_http_limit_flags(*cmd, o.http_limits, "--max-connections,--threads");  // --threads: its name before 2026-11
+  add_http_origin_flags(*cmd, o.http_origins);
   cmd->add_option("--ready-file", args->ready_file,
                   "once listening, write the port to this file (removed on stop), for scripts to wait on");
   cmd->add_flag("-q,--quiet", o.quiet, "no line per request");

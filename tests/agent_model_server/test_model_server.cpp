@@ -218,6 +218,45 @@ TEST(ModelServer, ListsModelsAndAnswersUnknownRoutesWithAJsonError) {
   EXPECT_EQ(json::parse(default_models->body)["data"][0]["id"], "reply-file");
 }
 
+TEST(ModelServer, RefusesAForeignHostOrOriginWith403InTheOpenAiShape) {
+  Served s({});
+  const std::string port = std::to_string(s.server->port());
+  const auto rebound = s.post(kGoodRequest, {{"Host", "attacker.example:" + port}});
+  ASSERT_TRUE(rebound);
+  EXPECT_EQ(rebound->status, 403);
+  EXPECT_NE(error_message(rebound).find("attacker.example"), std::string::npos) << rebound->body;
+  EXPECT_EQ(json::parse(rebound->body)["error"]["type"], "permission_error");
+  const auto page = s.post(kGoodRequest, {{"Origin", "https://attacker.example"}});
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 403);
+  EXPECT_NE(error_message(page).find("--allow-origin"), std::string::npos) << page->body;
+  const auto own_page = s.post(kGoodRequest, {{"Origin", "http://127.0.0.1:" + port}});
+  ASSERT_TRUE(own_page);
+  EXPECT_EQ(own_page->status, 200) << own_page->body;
+  EXPECT_EQ(s.post(kGoodRequest, {{"Host", "localhost:" + port}})->status, 200);
+  EXPECT_EQ(s.server->stats().bad_requests, 2u);
+}
+
+TEST(ModelServer, AnOriginGivenWithAllowOriginGetsCorsHeaders) {
+  ms::ModelServerOptions o;
+  o.http_origins.allowed_origins = {"http://localhost:5173"};
+  Served s(o);
+  auto c = s.client();
+  const auto preflight =
+      c.Options("/v1/chat/completions", {{"Origin", "http://localhost:5173"}, {"Access-Control-Request-Method", "POST"}});
+  ASSERT_TRUE(preflight);
+  EXPECT_EQ(preflight->status, 204);
+  EXPECT_NE(preflight->get_header_value("Access-Control-Allow-Headers").find("Authorization"), std::string::npos);
+  const auto answered = s.post(kGoodRequest, {{"Origin", "http://localhost:5173"}});
+  ASSERT_TRUE(answered);
+  EXPECT_EQ(answered->status, 200);
+  EXPECT_EQ(answered->get_header_value("Access-Control-Allow-Origin"), "http://localhost:5173");
+  const auto other = s.post(kGoodRequest, {{"Origin", "http://localhost:5174"}});
+  ASSERT_TRUE(other);
+  EXPECT_EQ(other->status, 403);
+  EXPECT_FALSE(other->has_header("Access-Control-Allow-Origin"));
+}
+
 TEST(ModelServer, AppliesAFixedLatency) {
   ms::ModelServerOptions o;
   o.latency = "fixed:0.3";

@@ -1,5 +1,5 @@
 // MCP's Streamable HTTP transport through a cpp-httplib client: the session header's rules,
-// 202 for notifications, SSE for progress, DELETE, GET, Origin and protocol-version checks.
+// 202 for notifications, SSE for progress, DELETE, GET, Host, Origin and protocol-version checks.
 #include "agent/mcp/mcp_server.hpp"
 #include "tests/mcp_protocol/fake_mcp_rig.hpp"
 
@@ -96,16 +96,37 @@ TEST_F(McpHttpTest, AnUnsupportedProtocolVersionHeaderIs400) {
   EXPECT_NE(result->body.find("1999-01-01"), std::string::npos);
 }
 
-TEST_F(McpHttpTest, AForeignOriginIs403AndALocalOneIsServed) {
+TEST_F(McpHttpTest, AForeignOriginIs403AndTheServersOwnIsServed) {
   auto foreign = post(kInitialize, {{"Origin", "https://evil.example"}});
   ASSERT_TRUE(foreign);
   EXPECT_EQ(foreign->status, 403);
+  EXPECT_NE(json::parse(foreign->body)["error"]["message"].get<std::string>().find("--allow-origin"), std::string::npos);
   auto foreign_form = client->Post("/mcp", {{"Origin", "http://evil.example"}}, "a=1", "application/x-www-form-urlencoded");
   ASSERT_TRUE(foreign_form);
   EXPECT_EQ(foreign_form->status, 403);  // the origin is judged before anything else
-  auto local = post(kInitialize, {{"Origin", "http://localhost:6274"}});
-  ASSERT_TRUE(local);
-  EXPECT_EQ(local->status, 200);
+  auto other_local_page = post(kInitialize, {{"Origin", "http://localhost:6274"}});
+  ASSERT_TRUE(other_local_page);
+  EXPECT_EQ(other_local_page->status, 403);  // another port is another origin: allowed only with --allow-origin
+  auto null_origin = post(kInitialize, {{"Origin", "null"}});
+  ASSERT_TRUE(null_origin);
+  EXPECT_EQ(null_origin->status, 403);
+  auto own = post(kInitialize, {{"Origin", "http://localhost:" + std::to_string(port)}});
+  ASSERT_TRUE(own);
+  EXPECT_EQ(own->status, 200);
+  EXPECT_FALSE(own->has_header("Access-Control-Allow-Origin"));
+}
+
+TEST_F(McpHttpTest, AHostThatIsNotThisServerIs403DnsRebinding) {
+  auto rebound = post(kInitialize, {{"Host", "evil.example:" + std::to_string(port)}});
+  ASSERT_TRUE(rebound);
+  EXPECT_EQ(rebound->status, 403);
+  EXPECT_NE(json::parse(rebound->body)["error"]["message"].get<std::string>().find("evil.example"), std::string::npos);
+  auto wrong_port = post(kInitialize, {{"Host", "127.0.0.1:1"}});
+  ASSERT_TRUE(wrong_port);
+  EXPECT_EQ(wrong_port->status, 403);
+  auto by_name = post(kInitialize, {{"Host", "localhost:" + std::to_string(port)}});
+  ASSERT_TRUE(by_name);
+  EXPECT_EQ(by_name->status, 200);
 }
 
 TEST_F(McpHttpTest, BadBodiesAreRefusedClearly) {
@@ -148,7 +169,20 @@ TEST_F(McpHttpTest, ABodyOver8MiBIs413) {
   EXPECT_EQ(result->status, 413);
 }
 
-TEST_F(McpHttpTest, ALocalPageGetsCorsAndItsPreflightIsAnswered) {
+class McpHttpAllowedOriginTest : public McpHttpTest {
+ protected:
+  McpHttpAllowedOriginTest() {
+    server.reset();
+    options.http_origins.allowed_origins = {"http://localhost:6274"};
+    options.http_origins.allowed_hosts = {"rig.example"};
+    server = std::make_unique<McpServer>(rig, options);
+    port = server->start_http();
+    client = std::make_unique<httplib::Client>("127.0.0.1", port);
+    client->set_read_timeout(10, 0);
+  }
+};
+
+TEST_F(McpHttpAllowedOriginTest, AnAllowedPageGetsCorsAndItsPreflightIsAnswered) {
   auto preflight = client->Options("/mcp", {{"Origin", "http://localhost:6274"}, {"Access-Control-Request-Method", "POST"}});
   ASSERT_TRUE(preflight);
   EXPECT_EQ(preflight->status, 204);
@@ -156,11 +190,18 @@ TEST_F(McpHttpTest, ALocalPageGetsCorsAndItsPreflightIsAnswered) {
   EXPECT_EQ(preflight->get_header_value("Access-Control-Allow-Origin"), "http://localhost:6274");
   auto opened = post(kInitialize, {{"Origin", "http://localhost:6274"}});
   ASSERT_TRUE(opened);
+  EXPECT_EQ(opened->status, 200);
   EXPECT_EQ(opened->get_header_value("Access-Control-Expose-Headers"), "Mcp-Session-Id");
-  auto foreign = client->Options("/mcp", {{"Origin", "https://evil.example"}});
+  auto foreign = client->Options("/mcp", {{"Origin", "https://evil.example"}, {"Access-Control-Request-Method", "POST"}});
   ASSERT_TRUE(foreign);
   EXPECT_EQ(foreign->status, 403);
   EXPECT_FALSE(foreign->has_header("Access-Control-Allow-Origin"));
+}
+
+TEST_F(McpHttpAllowedOriginTest, AHostNameGivenWithAllowHostIsAnswered) {
+  auto named = post(kInitialize, {{"Host", "rig.example:" + std::to_string(port)}});
+  ASSERT_TRUE(named);
+  EXPECT_EQ(named->status, 200);
 }
 
 TEST_F(McpHttpTest, GetIs405) {
