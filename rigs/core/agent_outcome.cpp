@@ -1,6 +1,8 @@
 // The run status the agent's recorded turns call for.
 #include "rigs/core/agent_outcome.hpp"
 
+#include <cstdio>
+
 namespace a3::rigs {
 namespace {
 
@@ -62,6 +64,14 @@ std::string agent_failure_status(const std::vector<json>& turns) {
                     (agent_turns == 1 ? "" : "s");
   if (last != nullptr && !last_error(*last).empty()) why += "; last: " + last_error(*last);
   return why + ")";
+}
+
+std::string never_flew_status(bool has_flown, double max_altitude_m, std::size_t objectives) {
+  if (has_flown || objectives == 0) return "";
+  char highest[32];
+  std::snprintf(highest, sizeof highest, "%.2f", max_altitude_m);
+  return "never_flew: the vehicle never left the ground (highest " + std::string(highest) + " m) though the mission has " +
+         std::to_string(objectives) + " objective" + (objectives == 1 ? "" : "s");
 }
 
 }  // namespace a3::rigs

@@ -7,6 +7,9 @@
 //   produced a valid action; its turns are recorded with their errors).
 // Both read only the recorded turns (RecordedEpisode::turns, with their _rig part), as the
 // episode writes them.
+// - never_flew: the agent acted, but the vehicle never left the ground although the mission
+//   has objectives (a replayed episode that never takes off, a take-off lost on the link and
+//   never sent again): an episode that flew nothing is not "completed".
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -23,5 +26,9 @@ std::string endpoint_failure_status(const std::vector<nlohmann::json>& turns);
 
 // "agent_failed: no agent turn had a valid action (<n> agent turns; last error: ...)", or "".
 std::string agent_failure_status(const std::vector<nlohmann::json>& turns);
+
+// "never_flew: the vehicle never left the ground (highest <z> m) though the mission has <n>
+// objectives", or "" when it flew or the mission needs no flight (no objectives).
+std::string never_flew_status(bool has_flown, double max_altitude_m, std::size_t objectives);
 
 }  // namespace a3::rigs

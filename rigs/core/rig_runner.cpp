@@ -34,16 +34,17 @@ namespace {
 
 // The final status: what ended the run, unless the user, a node or the endpoint ended it, or
 // the agent never acted (agent_failed: the agent, not the host, is at fault), or the real-time
-// contract broke (then the run, not the agent, is at fault). Virtual time has no contract
-// (realtime null).
-std::string final_status(const std::string& ended, const nlohmann::json& realtime,
-                         const std::vector<nlohmann::json>& turns) {
+// contract broke (then the run, not the agent, is at fault), or the vehicle never left the
+// ground on a mission that needs flight (never_flew). Virtual time has no contract (realtime null).
+std::string final_status(const std::string& ended, const nlohmann::json& realtime, const RecordedEpisode& r,
+                         const Scenario& s) {
   if (ended == "interrupted" || ended.rfind("node_failed", 0) == 0 || ended.rfind("endpoint_failed", 0) == 0) {
     return ended;
   }
-  if (std::string why = agent_failure_status(turns); !why.empty()) return why;
-  const std::string why = realtime_violations(realtime);
-  return why.empty() ? ended : "realtime_violated: " + why;
+  if (std::string why = agent_failure_status(r.turns); !why.empty()) return why;
+  if (const std::string why = realtime_violations(realtime); !why.empty()) return "realtime_violated: " + why;
+  const std::string grounded = never_flew_status(r.has_flown, r.max_altitude_m, s.mission.objectives.size());
+  return grounded.empty() ? ended : grounded;
 }
 
 using SteadyClock = std::chrono::steady_clock;
@@ -218,7 +219,7 @@ RunResult run_virtual(const Scenario& s, const RunOptions& o, const RigConfigs& 
   } catch (const std::exception& e) {
     status = std::string("node_failed: ") + e.what();
   }
-  status = final_status(status, nullptr, n.recorder->snapshot().turns);
+  status = final_status(status, nullptr, n.recorder->snapshot(), s);
   RunEnd end{status, t, std::chrono::duration<double>(SteadyClock::now() - wall0).count(), n.counters(), nullptr};
   return finish(s, o, n, end, unix0, progress);
 }
@@ -346,7 +347,7 @@ RunResult run_real(const Scenario& s, const RunOptions& o, const RigConfigs& cfg
   end.wall_s = wall_s;
   end.counters = counters_from_stats(r.nodes);
   end.realtime = realtime_report(o, {mission_s, wall_s, windows.worst()}, r.nodes);
-  end.status = final_status(status, end.realtime, r.turns);
+  end.status = final_status(status, end.realtime, r, s);
   return finish(s, o, n, end, unix0, progress);
 }
 
@@ -359,6 +360,7 @@ int run_exit_status(const std::string& status) {
   if (status.rfind("agent_failed", 0) == 0) return 6;
   if (status.rfind("endpoint_failed", 0) == 0) return 7;
   if (status.rfind("output_failed", 0) == 0) return 8;
+  if (status.rfind("never_flew", 0) == 0) return 9;
   return 0;
 }
 

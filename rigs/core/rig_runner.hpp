@@ -36,7 +36,8 @@ using ProgressFn = std::function<void(const std::string& line)>;
 
 // The exit status of `a3rig run` for a run's status: 0 written, 3 interrupted, 4 node_failed,
 // 5 realtime_violated, 6 agent_failed, 7 endpoint_failed (rigs/core/agent_outcome.hpp),
-// 8 output_failed (an output could not be written: rigs/core/run_outputs.hpp).
+// 8 output_failed (an output could not be written: rigs/core/run_outputs.hpp), 9 never_flew
+// (the vehicle never left the ground on a mission with objectives: rigs/core/agent_outcome.hpp).
 int run_exit_status(const std::string& status);
 
 // stop: set from a signal handler to end the run early (the episode is still written).

@@ -143,7 +143,9 @@ CellRunOutcome ChildProcessCellRunner::run(const SweepCell& cell, const std::fil
                        strsignal(WTERMSIG(wait_status)) + ")" + see_log};
   }
   const int code = WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : -1;
-  if (code != 0) return {false, "a3rig run exited with status " + std::to_string(code) + see_log};
+  // 9: never_flew, a flown episode (written) in which the vehicle stayed on the ground: the
+  // cell's result, a failure of its agent, not of the run.
+  if (code != 0 && code != 9) return {false, "a3rig run exited with status " + std::to_string(code) + see_log};
   return {true, ""};
 }
 

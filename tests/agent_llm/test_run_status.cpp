@@ -73,6 +73,15 @@ TEST(RunStatus, ExitStatusesOfEveryStatus) {
   EXPECT_EQ(rigs::run_exit_status("realtime_violated: x"), 5);
   EXPECT_EQ(rigs::run_exit_status("agent_failed: x"), 6);
   EXPECT_EQ(rigs::run_exit_status("endpoint_failed: x"), 7);
+  EXPECT_EQ(rigs::run_exit_status("output_failed: x"), 8);
+  EXPECT_EQ(rigs::run_exit_status("never_flew: x"), 9);
+}
+
+TEST(RunStatus, AVehicleThatNeverLeftTheGroundOnAMissionIsNeverFlew) {
+  EXPECT_EQ(rigs::never_flew_status(false, 0.004, 2),
+            "never_flew: the vehicle never left the ground (highest 0.00 m) though the mission has 2 objectives");
+  EXPECT_EQ(rigs::never_flew_status(true, 40.0, 2), "");
+  EXPECT_EQ(rigs::never_flew_status(false, 0.0, 0), "") << "a mission without objectives needs no flight";
 }
 
 // A sweep cell whose run ended agent_failed or endpoint_failed is not a finished cell.
@@ -87,12 +96,12 @@ TEST(RunStatus, ASweepCountsAgentAndEndpointFailuresAsUnfinishedCells) {
   std::filesystem::create_directories(dir);
   for (const std::string status : {"agent_failed: no agent turn had a valid action (6 agent turns)",
                                    "endpoint_failed: 2 agent turns in a row failed at the endpoint; last: x",
-                                   "completed"}) {
+                                   "completed", "never_flew: the vehicle never left the ground (highest 0.00 m)"}) {
     const json episode = {{"dialogue", json::array()},
                           {"_rig", {{"status", status}, {"agent", "llm"}, {"think_time", "0"}, {"seed", 42u}}}};
     std::ofstream(dir / "episode.json") << episode.dump();
     const rigs::sweep::CellCheck check = rigs::sweep::check_cell(dir, cell);
-    if (status == "completed") {
+    if (status == "completed" || status.rfind("never_flew", 0) == 0) {  // never_flew: a flown cell that failed
       EXPECT_TRUE(check.complete) << check.why_not;
     } else {
       EXPECT_FALSE(check.complete) << status;

@@ -126,6 +126,26 @@ TEST(RigBehaviour, TheSafetyGateRefusesUnsafeActions) {
   std::filesystem::remove_all(o.out_dir);
 }
 
+// A recorded agent that only reads telemetry: the vehicle never leaves the ground, and a run
+// with objectives that flew nothing ends never_flew (exit 9), not completed.
+TEST(RigBehaviour, AnAgentThatNeverTakesOffEndsNeverFlew) {
+  const a3::test::TempDir dir("grounded");
+  json episode = {{"_meta", {{"gen_time_s", 2.0}}}, {"dialogue", json::array()}};
+  for (int n : {1, 3, 5, 7}) {
+    episode["dialogue"].push_back({{"turn", n}, {"speaker", "agent"}, {"intent", "status_report"},
+                                   {"actions", {{{"type", "mcp"}, {"name", "read_telemetry"}, {"args", json::object()}}}}});
+  }
+  std::ofstream(dir.path() / "recorded.json") << episode.dump();
+  RunOptions o = a3::test::virtual_run("survey-field", "grounded");
+  o.agent = "replay:" + (dir.path() / "recorded.json").string();
+  const RunResult r = a3::test::run(o);
+  EXPECT_EQ(r.status.rfind("never_flew: the vehicle never left the ground", 0), 0u) << r.status;
+  EXPECT_EQ(rigs::run_exit_status(r.status), 9);
+  EXPECT_EQ(r.episode["_rig"]["status"], r.status);
+  EXPECT_FALSE(r.episode["success"].get<bool>());
+  std::filesystem::remove_all(o.out_dir);
+}
+
 // The link dies mid-flight (a trace with total loss from t = 40 s): the ground's heartbeats
 // stop reaching the vehicle, the flight controller holds, then returns home and lands.
 TEST(RigBehaviour, ALostLinkTriggersTheFlightControllersFailsafe) {
