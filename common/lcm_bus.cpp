@@ -43,7 +43,7 @@ std::string lcm_multicast_hint() {
   return "LCM's UDP multicast needs multicast looped back on this host. As root run:\n"
          "  ip link set lo multicast on\n"
          "  ip route add 239.255.76.67/32 dev lo\n"
-         "or, for a single-process run, set LCM_DEFAULT_URL=memq://";
+         "or fly in virtual time (--runtime virtual), which needs no network";
 }
 
 class LcmBus::Subscriber {

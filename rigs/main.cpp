@@ -2,9 +2,12 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <memory>
+#include <string>
 #include <exception>
 #include <iostream>
 
+#include "rigs/cli/command_list.hpp"
 #include "rigs/cli/command_registry.hpp"
 
 namespace {
@@ -29,12 +32,28 @@ int usage_error(const CLI::App& app, const CLI::ParseError& e) {
   return 2;
 }
 
+// `a3rig --check-args COMMAND ...`: the command line is parsed and checked (flags, values, files
+// that must exist, required options, unexpected arguments) and nothing runs: once CLI11 has
+// checked everything, the program's own parse-complete callback, which comes before any
+// command's, ends the parse. The README test checks the README's commands this way, so a
+// renamed flag fails the suite.
+struct ArgumentsChecked {};
+
+bool take_check_args_flag(int& argc, char** argv) {
+  if (argc < 2 || std::string(argv[1]) != "--check-args") return false;
+  std::rotate(argv + 1, argv + 2, argv + argc);
+  --argc;
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  const bool check_only = take_check_args_flag(argc, argv);
   CLI::App app{
-      "a3rig — co-simulation rig that evaluates LLM agents flying UAV missions over "
-      "emulated 6G links, and scores episodes with the α³-Bench metric."};
+      "a3rig: a co-simulation rig in which LLM agents fly a physical UAV model over emulated 6G\n"
+      "links, with a real flight-controller interface on CAN; episodes are scored with α³-Bench."};
+  app.formatter(std::make_shared<a3::rigs::CommandListFormatter>());
   app.set_version_flag("--version", std::string("a3rig ") + A3RIG_VERSION);
   app.require_subcommand(1);
   app.fallthrough(false);
@@ -47,9 +66,14 @@ int main(int argc, char** argv) {
             [](const auto& a, const auto& b) { return a.sort_key < b.sort_key; });
   for (const auto& command : commands) command.add_to(app);
   if (node->get_subcommands({}).empty()) app.remove_subcommand(node);
+  a3::rigs::group_commands(app);
+  if (check_only) app.parse_complete_callback([] { throw ArgumentsChecked{}; });
 
   try {
     app.parse(argc, argv);
+  } catch (const ArgumentsChecked&) {
+    std::cout << command_path(app) << ": the command line is valid (--check-args: nothing run)\n";
+    return 0;
   } catch (const CLI::ParseError& e) {
     return usage_error(app, e);
   } catch (const std::exception& e) {

@@ -3,6 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -35,9 +36,20 @@ fs::path episode_file(const fs::path& input) {
   return inside;
 }
 
-// Beside the episode: report.html for a run's episode.json, <name>.html for any other file.
-fs::path default_output(const fs::path& episode) {
+bool is_inside(const fs::path& file, const fs::path& folder) {
+  std::error_code ec;
+  const fs::path f = fs::weakly_canonical(fs::absolute(file), ec);
+  const fs::path d = fs::weakly_canonical(fs::absolute(folder), ec);
+  if (ec || d.empty()) return false;
+  const auto [folder_end, file_at] = std::mismatch(d.begin(), d.end(), f.begin(), f.end());
+  return folder_end == d.end();
+}
+
+// Beside the episode: report.html for a run's episode.json, <name>.html for any other file;
+// but an episode of the shared corpus (someone else's data) gets <name>.html in the current folder.
+fs::path default_output(const fs::path& episode, const fs::path& shared) {
   if (episode.filename() == "episode.json") return episode.parent_path() / "report.html";
+  if (is_inside(episode, shared)) return episode.filename().replace_extension(".html");
   fs::path out = episode;
   return out.replace_extension(".html");
 }
@@ -49,7 +61,7 @@ int run_report(const ReportArgs& args) {
   const fs::path shared = args.shared_dir.empty() ? default_shared_dir() : fs::path(args.shared_dir);
   const std::optional<Scenario> scenario =
       args.scenario.empty() ? scenario_of_episode(episode, shared) : std::optional<Scenario>(load_scenario(args.scenario, shared));
-  const fs::path out = args.out.empty() ? default_output(episode_path) : fs::path(args.out);
+  const fs::path out = args.out.empty() ? default_output(episode_path, shared) : fs::path(args.out);
   write_episode_report(out, episode, scenario, episode_path.string());
   std::cout << "report: " << out.string() << (scenario ? "" : " (no scenario found: the map shows no world)") << "\n";
   return 0;
@@ -66,7 +78,8 @@ A3_REGISTER_COMMAND("16-report", [](CLI::App& app) {
       "agent turn, safety events), timelines (altitude, speed, battery, link, turns with think time and "
       "link delay), the score and the dialogue, with a time slider. Opens offline in any browser.");
   cmd->add_option("input", args->input, "a run folder (with episode.json) or an episode file")->required()->check(CLI::ExistingPath);
-  cmd->add_option("-o,--out", args->out, "the HTML file (default: report.html in a run folder, else <episode>.html beside it)");
+  cmd->add_option("-o,--out", args->out, "the HTML file (default: report.html in a run folder, else <episode>.html beside it; for an episode of the "
+                  "shared corpus, <episode>.html in the current folder)");
   cmd->add_option("--scenario", args->scenario,
                   "the scenario to draw the world from (default: the one the episode names, or its initial_state)");
   cmd->add_option("--shared-dir", args->shared_dir, "the shared folder for alphabench: scenarios (default: ../shared or $A3_SHARED_DIR)");

@@ -1,12 +1,31 @@
 // The shared options of `a3rig run` and `a3rig mcp`.
 #include "rigs/cli/scenario_run_flags.hpp"
 
+#include <cstdlib>
 #include <map>
 #include <stdexcept>
 
+#include "common/log.hpp"
 #include "rigs/cli/flag_checks.hpp"
+#include "rigs/core/scenario.hpp"
 
 namespace a3::rigs {
+
+namespace {
+
+// The rig's nodes each open an LCM instance of their own; memq:// delivers only inside one, so
+// they would never hear each other and simulated time would never pass.
+void refuse_in_process_lcm(const std::string& requested_url) {
+  const char* env = std::getenv("LCM_DEFAULT_URL");
+  const std::string url = !requested_url.empty() ? requested_url : env != nullptr ? env : "";
+  if (url.rfind("memq://", 0) != 0) return;
+  throw std::invalid_argument(std::string(requested_url.empty() ? "LCM_DEFAULT_URL" : "--lcm-url") + " '" + url +
+                              "': memq:// delivers only inside one LCM instance and each rig node opens its own, so "
+                              "the run would stay at t = 0 s; use udpm:// (the default; as root scripts/lcm-loopback.sh "
+                              "routes it over loopback) or --runtime virtual");
+}
+
+}  // namespace
 
 void ScenarioRunFlags::apply() {
   options.runtime = runtime == "virtual" ? Runtime::kVirtual : Runtime::kReal;
@@ -15,14 +34,21 @@ void ScenarioRunFlags::apply() {
     throw std::invalid_argument("--processes: runs in real time only (virtual time is one process by design); drop "
                                 "--runtime virtual or --processes");
   }
+  if (options.runtime == Runtime::kReal) refuse_in_process_lcm(options.lcm_url);
+  // -q: no progress lines and no [info] log lines either (warnings and errors stay), unless
+  // A3_LOG_LEVEL says otherwise.
+  const char* level = std::getenv("A3_LOG_LEVEL");
+  if (options.quiet && (level == nullptr || *level == '\0')) common::set_log_level(common::LogLevel::kWarn);
 }
 
 void add_scenario_run_flags(CLI::App& cmd, ScenarioRunFlags& f) {
   RunOptions& o = f.options;
+  std::string builtins;
+  for (const auto& name : builtin_scenario_names()) builtins += (builtins.empty() ? "" : ", ") + name;
   cmd.add_option("--scenario", o.scenario,
-                 "built-in scenario (survey-field, parcel-delivery, bridge-inspection, thermal-search, nfz-detour, "
-                 "traffic-conflict), a scenario JSON file, or alphabench:<path> (an initial_state of the public "
-                 "corpus, relative to ../shared/alphabench/eval_runs)");
+                 "built-in scenario (" + builtins + "), a generated mission gen:SEED[:easy|medium|hard|knob=value+...] "
+                 "(e.g. gen:7:hard; `a3rig scenario generate --help` lists the knobs), a scenario JSON file, or alphabench:<path> (an initial_state of "
+                 "the public corpus, relative to ../shared/alphabench/eval_runs)");
   cmd.add_option("--think-time", o.think_time,
                  "latency added to every agent turn: seconds, fixed:S, uniform:A,B, normal:M,SD, lognormal:MEDIAN,SIGMA, "
                  "exp:MEAN, or model:<name> (a model of the paper)");
@@ -52,7 +78,7 @@ void add_scenario_run_flags(CLI::App& cmd, ScenarioRunFlags& f) {
   cmd.add_flag("--no-plot", [&o](int64_t) { o.write_plot = false; }, "do not draw the trajectory");
   cmd.add_flag("--no-report", [&o](int64_t) { o.write_report = false; },
                "do not write report.html (the episode's map, timelines, score and dialogue in one page)");
-  cmd.add_flag("-q,--quiet", o.quiet, "no progress lines");
+  cmd.add_flag("-q,--quiet", o.quiet, "no progress lines and no [info] log lines (warnings and errors stay)");
 }
 
 }  // namespace a3::rigs

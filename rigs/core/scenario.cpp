@@ -209,7 +209,8 @@ Scenario load_scenario(const std::string& spec, const std::filesystem::path& sha
     std::string names;
     for (const auto& n : builtin_scenario_names()) names += (names.empty() ? "" : ", ") + n;
     throw InputError("scenario '" + spec + "' is not a built-in scenario (" + names +
-                     "), an existing file, or alphabench:<path>");
+                     "), a generated mission (gen:SEED[:easy|medium|hard|knob=value+...], e.g. gen:7:hard), an existing file, or "
+                     "alphabench:<path>");
   }
   return scenario_from_json(common::load_json_file(spec), spec, std::filesystem::path(spec).parent_path());
 }

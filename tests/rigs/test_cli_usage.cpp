@@ -6,6 +6,10 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
 #include <string>
 
 namespace a3 {
@@ -62,6 +66,83 @@ TEST(CliUsage, AnOutputFolderThatIsAFileIsRefused) {
   expect_usage_error("run --out /etc/passwd", "a3rig run: --out: /etc/passwd is a file, not a folder");
   expect_usage_error("sweep --out /etc/passwd/x",
                      "a3rig sweep: --out: cannot create /etc/passwd/x: /etc/passwd is a file, not a folder");
+}
+
+TEST(CliUsage, AnInProcessLcmUrlIsRefusedInRealTimeInsteadOfHanging) {
+  expect_usage_error("run --lcm-url memq:// --scenario traffic-conflict",
+                     "a3rig: error: --lcm-url 'memq://': memq:// delivers only inside one LCM instance");
+  expect_usage_error("mcp --lcm-url memq:// --scenario traffic-conflict",
+                     "a3rig: error: --lcm-url 'memq://': memq:// delivers only inside one LCM instance");
+  ::setenv("LCM_DEFAULT_URL", "memq://", 1);
+  expect_usage_error("run --scenario traffic-conflict --sync free",
+                     "a3rig: error: LCM_DEFAULT_URL 'memq://': memq:// delivers only inside one LCM instance");
+  ::unsetenv("LCM_DEFAULT_URL");
+}
+
+TEST(CliUsage, AnUnknownScenarioAndTheHelpNameEveryKindOfScenario) {
+  const Outcome unknown = a3rig("run --runtime virtual --scenario no-such-place");
+  EXPECT_EQ(unknown.exit_status, 2) << unknown.output;
+  for (const std::string kind : {"survey-field", "gen:SEED", "alphabench:<path>", "existing file"}) {
+    EXPECT_NE(unknown.output.find(kind), std::string::npos) << kind << ": " << unknown.output;
+  }
+  const Outcome help = a3rig("run --help");
+  EXPECT_NE(help.output.find("gen:SEED"), std::string::npos) << help.output;
+  EXPECT_NE(help.output.find("traffic-conflict"), std::string::npos) << help.output;
+}
+
+TEST(CliUsage, AReportOfACorpusEpisodeIsWrittenHereNotIntoTheCorpus) {
+  namespace fs = std::filesystem;
+  const fs::path root = fs::path(::testing::TempDir()) / ("a3rig-report-" + std::to_string(::getpid()));
+  fs::create_directories(root / "shared/alphabench/eval_runs/m/uav");
+  fs::create_directories(root / "here");
+  const fs::path episode = root / "shared/alphabench/eval_runs/m/uav/sc-0001-ep-00.json";
+  std::ofstream(episode) << R"({"dialogue": [], "success": false})";
+  // (a3rig() runs "a3rig ARGS": --version first, then the report from the folder "here")
+  const Outcome o = a3rig("--version > /dev/null; cd " + (root / "here").string() + " && " + A3_BINARY_DIR +
+                          "/a3rig report " + episode.string() + " --shared-dir " + (root / "shared").string());
+  EXPECT_EQ(o.exit_status, 0) << o.output;
+  EXPECT_TRUE(fs::is_regular_file(root / "here/sc-0001-ep-00.html")) << o.output;
+  EXPECT_FALSE(fs::exists(episode.parent_path() / "sc-0001-ep-00.html")) << o.output;
+  fs::remove_all(root);
+}
+
+TEST(CliUsage, QuietPrintsNoInfoLines) {
+  const std::string out = ::testing::TempDir() + "a3rig-quiet-" + std::to_string(::getpid());
+  const Outcome o = a3rig("run --runtime virtual --scenario traffic-conflict --no-lcm-log --no-plot --no-report -q --out " + out);
+  EXPECT_EQ(o.exit_status, 0) << o.output;
+  EXPECT_EQ(o.output.find("[info]"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("episode:"), std::string::npos) << "the closing lines stay: " << o.output;
+  std::filesystem::remove_all(out);
+}
+
+TEST(CliUsage, TheProgramsHelpFitsAScreenAndListsEveryCommandOnce) {
+  const Outcome o = a3rig("--help");
+  EXPECT_EQ(o.exit_status, 0) << o.output;
+  EXPECT_LE(lines(o.output), 60) << o.output;
+  std::size_t at = 0;
+  for (std::size_t end = o.output.find('\n'); end != std::string::npos; at = end + 1, end = o.output.find('\n', at)) {
+    std::size_t columns = 0;
+    for (std::size_t i = at; i < end; ++i) columns += (static_cast<unsigned char>(o.output[i]) & 0xC0) != 0x80;
+    EXPECT_LE(columns, 100u) << o.output.substr(at, end - at);
+  }
+  for (const std::string group : {"Fly:", "Serve:", "Evaluate:", "Tools:"}) {
+    EXPECT_NE(o.output.find("\n" + group + "\n"), std::string::npos) << group << "\n" << o.output;
+  }
+  EXPECT_EQ(o.output.find("Other:"), std::string::npos) << "every command has its group: " << o.output;
+  for (const std::string command : {"run", "mcp", "sweep", "serve-model", "score", "validate", "report", "generate",
+                                    "scenario", "can"}) {
+    EXPECT_NE(o.output.find("\n  " + command + " "), std::string::npos) << command << "\n" << o.output;
+  }
+}
+
+TEST(CliUsage, CheckArgsChecksACommandLineWithoutRunningIt) {
+  const std::string out = ::testing::TempDir() + "a3rig-check-args-" + std::to_string(::getpid());
+  const Outcome good = a3rig("--check-args run --scenario traffic-conflict --runtime virtual --out " + out);
+  EXPECT_EQ(good.exit_status, 0) << good.output;
+  EXPECT_FALSE(std::filesystem::exists(out)) << "nothing ran";
+  expect_usage_error("--check-args run --no-such-flag",
+                     "a3rig run: The following argument was not expected: --no-such-flag");
+  expect_usage_error("--check-args run --rtf 0", "a3rig run: --rtf: must be > 0 (got 0)");
 }
 
 TEST(CliUsage, HelpAndVersionExitZero) {
