@@ -23,6 +23,7 @@
 #include "rigs/core/shared_dir.hpp"
 #include "rigs/sweep/cell_result.hpp"
 #include "rigs/sweep/cell_runner.hpp"
+#include "rigs/sweep/slurm_job.hpp"
 #include "rigs/sweep/slurm_submit.hpp"
 #include "rigs/sweep/sweep_report.hpp"
 #include "rigs/sweep/sweep_runner.hpp"
@@ -253,8 +254,7 @@ int run(const SweepArgs& args, const CLI::App& cmd) {
     for (const auto& cell : mine) {
       const auto dir = sweep::cell_dir(args.out, cell);
       const sweep::CellCheck check = sweep::check_cell(dir, cell);
-      std::string line;
-      for (const auto& a : runner.command(cell, dir)) line += (line.empty() ? "" : " ") + a;
+      const std::string line = sweep::shell_command(runner.command(cell, dir));  // to paste as it is
       std::printf("%5zu  %s  %s\n", cell.index, check.complete && !args.rerun ? "done  " : "to run", line.c_str());
     }
     return 0;

@@ -45,11 +45,7 @@ std::string environment(const SlurmJobOptions& o) {
   return "export A3_SHARED_DIR=" + shell_quote(o.shared_dir.string()) + "\n";
 }
 
-std::string command_line(const std::vector<std::string>& words) {
-  std::string line = "exec";
-  for (const auto& w : words) line += " " + shell_quote(w);
-  return line;
-}
+std::string command_line(const std::vector<std::string>& words) { return "exec " + shell_command(words); }
 
 }  // namespace
 
@@ -92,6 +88,12 @@ std::string shell_quote(const std::string& word) {
   std::string quoted = "'";
   for (const char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return quoted + "'";
+}
+
+std::string shell_command(const std::vector<std::string>& words) {
+  std::string line;
+  for (const auto& w : words) line += (line.empty() ? "" : " ") + shell_quote(w);
+  return line;
 }
 
 std::string sbatch_quote(const std::string& value) {

@@ -38,6 +38,8 @@ std::string merge_script(const SlurmJobOptions& options);
 
 // A word for a POSIX shell: unchanged when it holds only safe characters, else in single quotes.
 std::string shell_quote(const std::string& word);
+// Words as one command line to paste into a POSIX shell: each shell_quote'd, space-separated.
+std::string shell_command(const std::vector<std::string>& words);
 // A value on an #SBATCH line (sbatch's own parser, not a shell): in double quotes with
 // backslash before \ " and #, when it holds anything but safe characters.
 std::string sbatch_quote(const std::string& value);

@@ -15,8 +15,7 @@ std::string trimmed(const std::string& text) {
 }
 
 std::string submit(const std::vector<std::string>& argv, CommandRunner& runner) {
-  std::string line;
-  for (const auto& a : argv) line += (line.empty() ? "" : " ") + shell_quote(a);
+  const std::string line = shell_command(argv);
   const CapturedOutput result = runner.run(argv);
   if (result.exit_status != 0) {
     const std::string why = trimmed(result.err).empty() ? trimmed(result.out) : trimmed(result.err);
@@ -60,8 +59,7 @@ SlurmSubmission submit_slurm_jobs(const std::filesystem::path& out_dir, CommandR
   try {
     submission.merge_job_id = submit(merge, runner);
   } catch (const std::exception& e) {
-    std::string by_hand;
-    for (const auto& a : merge) by_hand += (by_hand.empty() ? "" : " ") + shell_quote(a);
+    const std::string by_hand = shell_command(merge);
     throw std::runtime_error("job array " + submission.array_job_id + " is submitted, the merge job is not: " +
                              e.what() + "; submit it by hand: " + by_hand);
   }

@@ -107,6 +107,18 @@ TEST(SweepSlurmScripts, ShellQuotingSurvivesTheShell) {
   EXPECT_EQ(shell_quote("out/sweep-1,2:x=y"), "out/sweep-1,2:x=y");
 }
 
+TEST(SweepSlurmScripts, APrintedCommandLinePastedIntoAShellGivesBackItsWords) {
+  const std::vector<std::string> words = {"printf", "%s|", "a3rig", "--scenario", "my $(touch /tmp/a3rig-pwned) 'x'.json",
+                                          "--out", "out/sweep cells;rm -rf x"};
+  FILE* shell = ::popen(shell_command(words).c_str(), "r");
+  ASSERT_NE(shell, nullptr);
+  std::string printed;
+  char buffer[256];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, shell)) > 0;) printed.append(buffer, n);
+  ASSERT_EQ(::pclose(shell), 0);
+  EXPECT_EQ(printed, "a3rig|--scenario|my $(touch /tmp/a3rig-pwned) 'x'.json|--out|out/sweep cells;rm -rf x|");
+}
+
 TEST(SweepSlurmScripts, BadOptionsAreNamed) {
   SlurmJobOptions job = example_job();
   job.out_dir = "relative/out";
