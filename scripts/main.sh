@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The main job: installs the Debian packages, builds, and flies one conversational mission in
+# The main job: installs the Debian packages the a3rig program needs, builds that program only
+# (scripts/test.sh installs and builds the rest), and flies one conversational mission in
 # real time with the built-in (scripted) agent: `a3rig run` on the survey-field scenario
 # (about 4 minutes of wall time), writing out/run/episode.json (α³-Bench format), the LCM log
 # and a trajectory plot, and printing the score. Extra arguments go to `a3rig run`, e.g.
@@ -9,7 +10,7 @@ set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 install=()
 [ "$(id -u)" = 0 ] || install=(--no-install)
-"$repo/scripts/setup.sh" "${install[@]}"
+"$repo/scripts/setup.sh" --program-only "${install[@]}"
 if [ "$(id -u)" = 0 ]; then
   "$repo/scripts/lcm-loopback.sh"
 fi
