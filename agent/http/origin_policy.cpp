@@ -8,6 +8,8 @@
 #include <regex>
 #include <stdexcept>
 
+#include "agent/http/request_checks.hpp"
+
 namespace a3::agent::http {
 namespace {
 
@@ -72,15 +74,6 @@ const std::regex& origin_syntax() {
   return kOrigin;
 }
 
-// Printable for a message: at most 80 bytes, control bytes as '?'.
-std::string shown(const std::string& value) {
-  std::string out = value.substr(0, 80);
-  for (char& c : out) {
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  }
-  return out + (value.size() > 80 ? "..." : "");
-}
-
 }  // namespace
 
 void check_origin_policy(const OriginPolicy& policy) {
@@ -139,12 +132,12 @@ std::optional<HttpRefusal> OriginCheck::refusal(const std::optional<std::string>
     const auto parts = split_host_port(*host);
     const bool port_ok = parts && (parts->port.empty() || parts->port == std::to_string(port_));
     if (!parts || !port_ok || !answers_to(parts->name)) {
-      return HttpRefusal{403, "forbidden: Host '" + shown(*host) + "' is not an address of this server (DNS rebinding "
+      return HttpRefusal{403, "forbidden: Host '" + shown_header_value(*host, 80) + "' is not an address of this server (DNS rebinding "
                               "protection; start the server with --allow-host NAME to answer to another name)"};
     }
   }
   if (origin && !is_own_origin(normal_origin(*origin)) && !is_allowed_cross_origin(*origin)) {
-    return HttpRefusal{403, "forbidden: cross-origin request from Origin '" + shown(*origin) +
+    return HttpRefusal{403, "forbidden: cross-origin request from Origin '" + shown_header_value(*origin, 80) +
                             "' (start the server with --allow-origin ORIGIN to allow a page there)"};
   }
   return std::nullopt;

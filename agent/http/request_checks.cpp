@@ -23,15 +23,6 @@ std::optional<std::size_t> parse_length(const std::string& value) {
   return n;
 }
 
-// Printable for a message: at most 40 bytes, control bytes as '?'.
-std::string shown(const std::string& value) {
-  std::string out = value.substr(0, 40);
-  for (char& c : out) {
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  }
-  return out + (value.size() > 40 ? "..." : "");
-}
-
 bool is_space_or_tab(char c) { return c == ' ' || c == '\t'; }
 
 bool equals_ignoring_case(std::string_view a, std::string_view lower) {
@@ -70,7 +61,7 @@ std::optional<HttpRefusal> content_length_refusal(const httplib::Request& reques
   const bool body_expected = carries_body(request.method);
   if (body_expected && request.has_header("Transfer-Encoding")) {
     return HttpRefusal{411, "Content-Length required: send the body with a Content-Length header (Transfer-Encoding '" +
-                                shown(request.get_header_value("Transfer-Encoding")) + "' is not accepted)"};
+                                shown_header_value(request.get_header_value("Transfer-Encoding"), 40) + "' is not accepted)"};
   }
   const auto [first, last] = request.headers.equal_range("Content-Length");
   if (first == last) {
@@ -81,7 +72,7 @@ std::optional<HttpRefusal> content_length_refusal(const httplib::Request& reques
   std::optional<std::size_t> length;
   for (auto it = first; it != last; ++it) {
     const auto n = parse_length(it->second);
-    if (!n) return HttpRefusal{400, "malformed Content-Length '" + shown(it->second) + "': must be a decimal byte count"};
+    if (!n) return HttpRefusal{400, "malformed Content-Length '" + shown_header_value(it->second, 40) + "': must be a decimal byte count"};
     if (length && *length != *n) return HttpRefusal{400, "malformed Content-Length: several headers that differ"};
     length = n;
   }
@@ -90,6 +81,14 @@ std::optional<HttpRefusal> content_length_refusal(const httplib::Request& reques
                                 std::to_string(*length) + ")"};
   }
   return std::nullopt;
+}
+
+std::string shown_header_value(const std::string& value, std::size_t max_bytes) {
+  std::string out = value.substr(0, max_bytes);
+  for (char& c : out) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  }
+  return out + (value.size() > max_bytes ? "..." : "");
 }
 
 bool bearer_key_matches(std::string_view request_head, const std::string& key) {

@@ -23,4 +23,8 @@ std::optional<HttpRefusal> content_length_refusal(const httplib::Request& reques
 // (surrounding spaces and tabs aside, as HTTP allows). Compared in constant time for a given length.
 bool bearer_key_matches(std::string_view request_head, const std::string& key);
 
+// A client's header value as a refusal message shows it: at most `max_bytes`, control bytes as
+// '?', "..." when cut.
+std::string shown_header_value(const std::string& value, std::size_t max_bytes);
+
 }  // namespace a3::agent::http
