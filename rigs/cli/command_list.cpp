@@ -52,6 +52,59 @@ std::string command_summary(const std::string& description) {
   return cut < first.size() ? first.substr(0, cut) + "…" : first;
 }
 
+std::string wrapped(const std::string& text, std::size_t width) {
+  std::string out;
+  std::size_t line_columns = 0;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    if (!out.empty()) out += '\n';
+    line_columns = 0;
+    std::istringstream words(line);
+    for (std::string word; words >> word;) {
+      std::size_t columns = 0;
+      for (const char c : word) columns += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+      if (line_columns > 0 && line_columns + 1 + columns > width) {
+        out += '\n';
+        line_columns = 0;
+      } else if (line_columns > 0) {
+        out += ' ';
+        ++line_columns;
+      }
+      out += word;
+      line_columns += columns;
+    }
+  }
+  return out;
+}
+
+HelpSections help_sections(const std::string& description) {
+  const std::size_t paragraph_end = description.find('\n');
+  const std::string first = description.substr(0, paragraph_end);
+  const std::string rest = paragraph_end == std::string::npos ? "" : description.substr(paragraph_end + 1);
+  const std::size_t exit_status = first.find(" Exit status");
+  if (exit_status == std::string::npos) return {first, rest};
+  return {first.substr(0, exit_status), first.substr(exit_status + 1) + (rest.empty() ? "" : "\n" + rest)};
+}
+
+std::string CommandListFormatter::make_description(const CLI::App* app) const {
+  if (app->get_parent() == nullptr) return CLI::Formatter::make_description(app);
+  const std::string summary = help_sections(app->get_description()).summary;
+  return summary.empty() ? "" : wrapped(summary, kLineColumns) + "\n";
+}
+
+std::string CommandListFormatter::make_footer(const CLI::App* app) const {
+  if (app->get_parent() == nullptr) return CLI::Formatter::make_footer(app);  // the examples, aligned
+  std::string closing = help_sections(app->get_description()).closing;
+  if (!app->get_footer().empty()) closing += (closing.empty() ? "" : "\n") + app->get_footer();
+  std::string spaced;  // a blank line between paragraphs
+  for (const char c : closing) spaced += c == '\n' ? std::string("\n\n") : std::string(1, c);
+  return closing.empty() ? "" : wrapped(spaced, kLineColumns) + "\n";
+}
+
+std::string CommandListFormatter::make_option_desc(const CLI::Option* option) const {
+  return wrapped(option->get_description(), kLineColumns - get_column_width());
+}
+
 std::string CommandListFormatter::make_subcommand(const CLI::App* sub) const {
   std::string name = "  " + sub->get_name();
   name.resize(std::max(name.size() + 1, kNameColumns), ' ');

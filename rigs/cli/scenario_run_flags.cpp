@@ -5,6 +5,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "agent/conversation/think_time.hpp"
 #include "common/log.hpp"
 #include "rigs/cli/flag_checks.hpp"
 #include "rigs/core/scenario.hpp"
@@ -49,9 +50,11 @@ void add_scenario_run_flags(CLI::App& cmd, ScenarioRunFlags& f) {
                  "built-in scenario (" + builtins + "), a generated mission gen:SEED[:easy|medium|hard|knob=value+...] "
                  "(e.g. gen:7:hard; `a3rig scenario generate --help` lists the knobs), a scenario JSON file, or alphabench:<path> (an initial_state of "
                  "the public corpus, relative to ../shared/alphabench/eval_runs)");
+  std::string models;
+  for (const auto& profile : agent::model_latency_profiles()) models += (models.empty() ? "" : ", ") + profile.name;
   cmd.add_option("--think-time", o.think_time,
                  "latency added to every agent turn: seconds, fixed:S, uniform:A,B, normal:M,SD, lognormal:MEDIAN,SIGMA, "
-                 "exp:MEAN, or model:<name> (a model of the paper)");
+                 "exp:MEAN, or model:<name>, a model of the paper (" + models + ")");
   cmd.add_option("--runtime", f.runtime, "real (default: the wall clock) or virtual (as fast as possible)")
       ->check(CLI::IsMember({"real", "virtual"}));
   cmd.add_option("--slice", o.slice, "start on this 6G slice instead of the scenario's (eMBB, URLLC or mMTC)")
@@ -63,7 +66,8 @@ void add_scenario_run_flags(CLI::App& cmd, ScenarioRunFlags& f) {
   cmd.add_option("--sync", o.sync,
                  "real time: lockstep (default: dynamics, bridge and flight controller advance together, paced by "
                  "the wall clock at --rtf) or free (every node on the wall clock; for a real flight controller)")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, Sync>{{"lockstep", Sync::kLockstep}, {"free", Sync::kFree}}));
+      ->transform(CLI::CheckedTransformer(std::map<std::string, Sync>{{"lockstep", Sync::kLockstep}, {"free", Sync::kFree}}))
+      ->option_text("lockstep|free");
   cmd.add_option("--lcm-url", o.lcm_url,
                  "real time: LCM URL (default $LCM_DEFAULT_URL, else a port of its own on udpm://239.255.76.67, "
                  "ttl=0, printed at the start: give it to lcm-spy; lockstep also uses the next port, for the ground "

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <unistd.h>
 #include <string>
 
@@ -85,9 +86,14 @@ TEST(CliUsage, AnUnknownScenarioAndTheHelpNameEveryKindOfScenario) {
   for (const std::string kind : {"survey-field", "gen:SEED", "alphabench:<path>", "existing file"}) {
     EXPECT_NE(unknown.output.find(kind), std::string::npos) << kind << ": " << unknown.output;
   }
-  const Outcome help = a3rig("run --help");
+  Outcome help = a3rig("run --help");
+  std::istringstream words(help.output);  // wrapped at 100 columns: search its words, one space apart
+  help.output.clear();
+  for (std::string word; words >> word;) help.output += (help.output.empty() ? "" : " ") + word;
   EXPECT_NE(help.output.find("gen:SEED"), std::string::npos) << help.output;
   EXPECT_NE(help.output.find("traffic-conflict"), std::string::npos) << help.output;
+  EXPECT_NE(help.output.find("model:<name>, a model of the paper (") , std::string::npos) << help.output;
+  EXPECT_NE(help.output.find("ChatGPT-4o"), std::string::npos) << "the model names are listed: " << help.output;
 }
 
 TEST(CliUsage, AReportOfACorpusEpisodeIsWrittenHereNotIntoTheCorpus) {
@@ -143,6 +149,21 @@ TEST(CliUsage, CheckArgsChecksACommandLineWithoutRunningIt) {
   expect_usage_error("--check-args run --no-such-flag",
                      "a3rig run: The following argument was not expected: --no-such-flag");
   expect_usage_error("--check-args run --rtf 0", "a3rig run: --rtf: must be > 0 (got 0)");
+}
+
+TEST(CliUsage, ACommandsHelpIsItsSummaryUsageAndOptionsThenAClosingSectionAllWithin100Columns) {
+  const Outcome o = a3rig("run --help");
+  EXPECT_EQ(o.exit_status, 0) << o.output;
+  EXPECT_EQ(o.output.rfind("Fly one conversational mission on the rig", 0), 0u) << o.output;
+  const std::size_t usage = o.output.find("Usage:"), exit_status = o.output.find("Exit status: 0");
+  EXPECT_LT(usage, o.output.find("--scenario")) << o.output;
+  EXPECT_LT(o.output.find("--scenario"), exit_status) << "exit codes close the help: " << o.output;
+  std::size_t at = 0;
+  for (std::size_t end = o.output.find('\n'); end != std::string::npos; at = end + 1, end = o.output.find('\n', at)) {
+    std::size_t columns = 0;
+    for (std::size_t i = at; i < end; ++i) columns += (static_cast<unsigned char>(o.output[i]) & 0xC0) != 0x80;
+    EXPECT_LE(columns, 100u) << o.output.substr(at, end - at);
+  }
 }
 
 TEST(CliUsage, HelpAndVersionExitZero) {
