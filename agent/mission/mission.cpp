@@ -1,6 +1,8 @@
 // Mission description.
 #include "agent/mission/mission.hpp"
 
+#include "agent/mission/objective_rules.hpp"
+
 namespace a3::agent {
 
 const char* to_string(ObjectiveType t) {
@@ -42,6 +44,7 @@ nlohmann::json mission_brief_json(const Mission& m) {
         j["home"] = {m.home_W_m.x(), m.home_W_m.y()};
         break;
     }
+    j["judged"] = objective_rule_text(o);
     objectives.push_back(j);
   }
   return {{"name", m.name},

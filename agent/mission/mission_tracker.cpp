@@ -3,11 +3,12 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
+
+#include "agent/mission/objective_rules.hpp"
 
 namespace a3::agent {
 namespace {
-
-constexpr double kSurveyEdgeMargin_m = 10.0;
 
 Eigen::Vector2d xy(const double p[3]) { return {p[0], p[1]}; }
 
@@ -42,15 +43,48 @@ void MissionTracker::on_state(const a3lcm::vehicle_state_t& s) {
   for (std::size_t i = 0; i < mission_.objectives.size(); ++i) {
     const Objective& o = mission_.objectives[i];
     if (o.type == ObjectiveType::kThermalSearch && !progress_[i].done && thermal_on &&
-        (xy(s.p_W_m) - o.hidden_target).norm() <= o.radius_m && s.p_W_m[2] <= o.altitude_m + 40.0 && !s.on_ground) {
+        (xy(s.p_W_m) - o.hidden_target).norm() <= o.radius_m && s.p_W_m[2] <= o.altitude_m + kThermalSightAbove_m &&
+        !s.on_ground) {
       mark(i, t_s, "target seen by the thermal camera");
     }
-    if (o.type != ObjectiveType::kDelivery || progress_[i].done) continue;
-    const bool over_point = (xy(s.p_W_m) - o.point).norm() <= o.radius_m && s.p_W_m[2] <= o.drop_altitude_m;
-    progress_[i].dwell_s = over_point ? progress_[i].dwell_s + dt : 0.0;
-    if (progress_[i].dwell_s >= 1.0) mark(i, t_s, "delivered at the drop point");
+    if (o.type == ObjectiveType::kDelivery && !progress_[i].done) track_delivery(i, s, dt);
   }
   update_landing();
+}
+
+void MissionTracker::track_delivery(std::size_t i, const a3lcm::vehicle_state_t& s, double dt_s) {
+  const Objective& o = mission_.objectives[i];
+  ObjectiveProgress& p = progress_[i];
+  const double distance_m = (xy(s.p_W_m) - o.point).norm();
+  const bool in_radius = distance_m <= o.radius_m;
+  if (in_radius) p.lowest_in_radius_m = std::min(p.lowest_in_radius_m, s.p_W_m[2]);
+  p.dwell_s = in_radius && s.p_W_m[2] <= drop_ceiling_m(o) ? p.dwell_s + dt_s : 0.0;
+  p.longest_dwell_s = std::max(p.longest_dwell_s, p.dwell_s);
+  if (p.dwell_s >= kDropDwell_s) {
+    char text[120];
+    std::snprintf(text, sizeof text, "delivered at the drop point (%.1f m from it, %.1f m altitude)", distance_m,
+                  s.p_W_m[2]);
+    mark(i, s.utime_us * 1e-6, text);
+  }
+}
+
+std::string MissionTracker::why_not_done(std::size_t i) const {
+  const Objective& o = mission_.objectives[i];
+  const ObjectiveProgress& p = progress_[i];
+  if (p.done || o.type != ObjectiveType::kDelivery || p.lowest_in_radius_m == kNever) return "";
+  char text[240];
+  if (p.lowest_in_radius_m > drop_ceiling_m(o)) {
+    std::snprintf(text, sizeof text,
+                  "not delivered: the lowest altitude within %g m of the drop point was %.1f m; a drop needs %g m or "
+                  "lower held for %g s",
+                  o.radius_m, p.lowest_in_radius_m, drop_ceiling_m(o), kDropDwell_s);
+  } else {
+    std::snprintf(text, sizeof text,
+                  "not delivered: held at or below %g m within %g m of the drop point for %.1f s at most; a drop needs "
+                  "%g s without a break",
+                  drop_ceiling_m(o), o.radius_m, p.longest_dwell_s, kDropDwell_s);
+  }
+  return text;
 }
 
 void MissionTracker::on_fc_status(const a3lcm::fc_status_t& s) {
@@ -132,6 +166,7 @@ nlohmann::json MissionTracker::to_json() const {
     const ObjectiveProgress& p = progress_[i];
     nlohmann::json j = {{"id", o.id}, {"type", to_string(o.type)}, {"done", p.done}, {"detail", p.detail}};
     if (p.done) j["done_at_s"] = p.done_at_s;
+    if (const std::string why = why_not_done(i); !why.empty()) j["why_not"] = why;
     if (o.type == ObjectiveType::kSurvey) j["images"] = p.count;
     objectives.push_back(j);
   }

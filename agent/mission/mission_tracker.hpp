@@ -3,12 +3,14 @@
 // search objectives are achieved once and stay achieved; return-and-land holds while the
 // vehicle is disarmed on the ground near home. A thermal search finds its target when the
 // active thermal camera passes within the objective's radius of it (at most 40 m above the
-// objective's altitude), or when a thermal capture is taken there.
+// objective's altitude), or when a thermal capture is taken there. The numbers and the sentence
+// each brief states are in objective_rules.hpp.
 #pragma once
 
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -23,7 +25,9 @@ struct ObjectiveProgress {
   bool done = false;
   double done_at_s = -1.0;
   int count = 0;               // captures that count (survey)
-  double dwell_s = 0.0;        // delivery: time spent at the drop point
+  double dwell_s = 0.0;        // delivery: time spent at the drop point without a break, now
+  double longest_dwell_s = 0.0;  // ... the longest such stay so far
+  double lowest_in_radius_m = std::numeric_limits<double>::infinity();  // delivery: lowest altitude there
   std::string detail;
 };
 
@@ -38,7 +42,10 @@ class MissionTracker {
   bool all_done() const;
   const std::vector<ObjectiveProgress>& progress() const { return progress_; }
   const Mission& mission() const { return mission_; }
-  // {"objectives": [{id, type, done, done_at_s, detail}], "all_done", "mode", "armed",
+  // Why a delivery that came within its radius is not done (the altitude reached, or a stay too
+  // short); "" for anything else.
+  std::string why_not_done(std::size_t i) const;
+  // {"objectives": [{id, type, done, done_at_s, detail, why_not}], "all_done", "mode", "armed",
   //  "on_ground", "position": [x, y, z]}
   nlohmann::json to_json() const;
   // Bumped whenever an objective changes state: a cheap "did anything happen" check.
@@ -47,6 +54,8 @@ class MissionTracker {
   const a3lcm::vehicle_state_t& state() const { return state_; }
 
  private:
+  static constexpr double kNever = std::numeric_limits<double>::infinity();
+  void track_delivery(std::size_t i, const a3lcm::vehicle_state_t& s, double dt_s);
   void update_landing();
   void mark(std::size_t i, double t_s, const std::string& detail);
 
