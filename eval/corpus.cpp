@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "eval/rig_episode_label.hpp"
+
 namespace a3::eval {
 namespace fs = std::filesystem;
 
@@ -66,6 +68,20 @@ CorpusWalker::CorpusWalker(std::vector<fs::path> roots, CorpusOptions options)
   }
 }
 
+EpisodeFile CorpusWalker::rig_episode(const fs::path& path) {
+  EpisodeFile file{path, {}, {}, std::nullopt};
+  attribute_model(file, options_);
+  const auto label = read_rig_episode_label(path);
+  if (!label) return file;  // not a3rig's or unreadable: the check says what is wrong
+  if (options_.model_override.empty()) {
+    file.model = label->model;
+    file.domain = options_.domain_override;
+  }
+  const auto numbered = rig_scenario_numbers_.emplace(label->scenario, static_cast<int>(rig_scenario_numbers_.size()));
+  file.name = EpisodeName{numbered.first->second, static_cast<int>(label->seed & 0x7fffffff)};
+  return file;
+}
+
 void CorpusWalker::push_directory(const fs::path& dir) {
   Frame frame;
   struct stat info {};
@@ -115,6 +131,7 @@ std::optional<EpisodeFile> CorpusWalker::next() {
         push_directory(root);
         continue;
       }
+      if (root.filename() == kRigEpisodeFileName) return rig_episode(root);
       EpisodeFile file{root, {}, {}, parse_episode_name(root.filename().string())};
       attribute_model(file, options_);
       return file;
@@ -132,6 +149,7 @@ std::optional<EpisodeFile> CorpusWalker::next() {
     if (auto parsed = parse_episode_name(path.filename().string())) {
       return EpisodeFile{path, frame.model, frame.domain, parsed};
     }
+    if (path.filename() == kRigEpisodeFileName) return rig_episode(path);
     // The entry's type comes from the folder listing; only symlinks need a stat.
     if (entry.is_directory(ec)) {
       // Symlinked folders are followed (loops are refused in push_directory); depth is capped.

@@ -1,10 +1,12 @@
 // Finding episode files: `<provider>/<model>/<domain>/sc-XXXX-ep-YY.json` trees (the α³-Bench
-// layout) or flat folders. Walks lazily in sorted order (deterministic output) and holds one
+// layout), flat folders, and a3rig's own run and sweep folders (every `episode.json`, attributed
+// from its `_meta` and `_rig`: rig_episode_label.hpp). Walks lazily in sorted order (deterministic output) and holds one
 // folder listing at a time, never the whole corpus.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,6 +59,8 @@ class CorpusWalker {
     uint64_t device = 0, inode = 0;  // identity, to refuse a symlink back to an ancestor
   };
   void push_directory(const std::filesystem::path& dir);
+  // An a3rig episode.json: model from the file (or the override), scenario and seed as its name.
+  EpisodeFile rig_episode(const std::filesystem::path& path);
 
   std::vector<std::filesystem::path> roots_;
   std::size_t next_root_ = 0;
@@ -64,6 +68,7 @@ class CorpusWalker {
   std::vector<Frame> stack_;
   std::vector<std::string> warnings_;
   uint64_t ignored_json_ = 0;
+  std::map<std::string, int> rig_scenario_numbers_;  // a3rig scenario names, numbered as met
 };
 
 }  // namespace a3::eval

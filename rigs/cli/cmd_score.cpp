@@ -91,7 +91,7 @@ int run_score(const ScoreArgs& args) {
 
   if (result.files == 0) {
     std::cerr << "a3rig score: no episode files found in the given folders (looked for "
-                 "<provider>/<model>/<domain>/sc-XXXX-ep-YY.json)\n";
+                 "<provider>/<model>/<domain>/sc-XXXX-ep-YY.json and a3rig's episode.json)\n";
     return 2;
   }
   if (args.output.empty()) {
@@ -136,7 +136,9 @@ A3_REGISTER_COMMAND("30-score", [](CLI::App& app) {
       "score",
       "Score α³-Bench episode corpora: the six pillars and α³ per episode, the model-level "
       "aggregates, and a leaderboard (SPEC-alpha3.md). Folders are searched for "
-      "<provider>/<model>/<domain>/sc-XXXX-ep-YY.json; flat folders need --model. Invalid files "
+      "<provider>/<model>/<domain>/sc-XXXX-ep-YY.json (the α³-Bench layout; flat folders need --model) "
+      "and for a3rig's own episode.json (a run or sweep folder: one row per agent, think time and "
+      "slice, named from the file's _meta and _rig). Invalid files "
       "count as failures and are listed on stderr. Exit status: 0 every file valid, 1 some "
       "invalid, 2 nothing found or a usage error.");
   cmd->add_option("paths", args->paths, "corpus folders (or episode files)")

@@ -160,6 +160,7 @@ nlohmann::json build_episode(const Scenario& s, const RunOptions& o, const Recor
                         {"crashed", crashed}}},
         {"counters", f.counters}}}};
   if (!f.realtime.is_null()) episode["_rig"]["realtime"] = f.realtime;
+  if (!o.slice.empty()) episode["_rig"]["slice"] = o.slice;
   if (!llm.model.empty()) {
     episode["_meta"]["model"] = llm.model;
     episode["_meta"]["provider"] = llm.provider;

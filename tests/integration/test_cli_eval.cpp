@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "tests/eval/episode_builder.hpp"
@@ -209,6 +210,39 @@ TEST(Cli, ValidateAcceptsThePublicCorpus) {
   EXPECT_EQ(r.exit_status, 0) << r.output;
   EXPECT_NE(r.output.find("200 files: 176 valid episodes, 24 failure stubs, 0 invalid"), std::string::npos)
       << r.output;
+}
+
+// Issue 34: a run folder and a sweep-like folder of a3rig's own episode.json files score as a
+// user expects: one row per agent configuration, named from the files, budget scenarios x seeds.
+TEST(Cli, ScoreReadsRunAndSweepFolders) {
+  const test::TempDir dir("cli-score-runs");
+  const auto fly = [&](const std::string& name, const std::string& flags) {
+    const auto r = run_command(a3rig() + " run -q --runtime virtual --scenario traffic-conflict --out " +
+                               quote((dir.path() / name).string()) + " " + flags);
+    ASSERT_EQ(r.exit_status, 0) << r.output;
+  };
+  fly("seed-1", "--seed 1");
+  auto r = run_command(a3rig() + " score -q --format json " + quote((dir.path() / "seed-1").string()));
+  ASSERT_EQ(r.exit_status, 0) << r.output;
+  nlohmann::json rows = nlohmann::json::parse(r.output);
+  ASSERT_EQ(rows.size(), 1u) << r.output;
+  EXPECT_EQ(rows[0]["model"], "a3rig/scripted");
+  EXPECT_EQ(rows[0]["budget"], 1);
+  EXPECT_EQ(rows[0]["n"], 1);
+
+  fly("seed-2", "--seed 2");
+  fly("slow", "--seed 1 --think-time 30 --slice URLLC");
+  r = run_command(a3rig() + " score --format json " + quote(dir.path().string()), true);
+  ASSERT_EQ(r.exit_status, 0) << r.output;
+  EXPECT_NE(r.output.find("budget 2 (1 scenarios x 2 episodes each)"), std::string::npos) << r.output;
+  rows = nlohmann::json::parse(r.output.substr(0, r.output.find("a3rig score:")));
+  ASSERT_EQ(rows.size(), 2u) << r.output;
+  std::map<std::string, nlohmann::json> by_model;
+  for (const auto& row : rows) by_model[row["model"]] = row;
+  ASSERT_TRUE(by_model.count("a3rig/scripted")) << r.output;
+  ASSERT_TRUE(by_model.count("a3rig/scripted, think 30, URLLC")) << r.output;
+  EXPECT_EQ(by_model["a3rig/scripted"]["files"], 2);
+  EXPECT_EQ(by_model["a3rig/scripted, think 30, URLLC"]["files"], 1);
 }
 
 }  // namespace

@@ -1,0 +1,46 @@
+// Who flew an a3rig episode, read on demand.
+#include "eval/rig_episode_label.hpp"
+
+#include <simdjson.h>
+
+namespace a3::eval {
+namespace {
+
+namespace od = simdjson::ondemand;
+
+// Larger files are not a3rig's (its episodes are a few MB at most): not read, the check says why.
+constexpr std::size_t kMaxLabelFileBytes = 64u << 20;
+
+std::string string_field(od::object& object, const char* key) {
+  std::string_view value;
+  if (object.find_field_unordered(key).get_string().get(value) != simdjson::SUCCESS) return "";
+  return std::string(value);
+}
+
+}  // namespace
+
+std::optional<RigEpisodeLabel> read_rig_episode_label(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec || size > kMaxLabelFileBytes || !std::filesystem::is_regular_file(path, ec)) return std::nullopt;
+  simdjson::padded_string text;
+  if (simdjson::padded_string::load(path.string()).get(text) != simdjson::SUCCESS) return std::nullopt;
+  od::parser parser;
+  od::document document;
+  if (parser.iterate(text).get(document) != simdjson::SUCCESS) return std::nullopt;
+  od::object meta, rig;
+  if (document.find_field_unordered("_meta").get_object().get(meta) != simdjson::SUCCESS) return std::nullopt;
+  RigEpisodeLabel label;
+  label.model = string_field(meta, "model");
+  if (document.find_field_unordered("_rig").get_object().get(rig) != simdjson::SUCCESS) return std::nullopt;
+  label.scenario = string_field(rig, "scenario");
+  if (rig.find_field_unordered("seed").get_int64().get(label.seed) != simdjson::SUCCESS) label.seed = 0;
+  const std::string think_time = string_field(rig, "think_time");
+  const std::string slice = string_field(rig, "slice");
+  if (label.model.empty() || label.scenario.empty()) return std::nullopt;
+  if (!think_time.empty() && think_time != "0") label.model += ", think " + think_time;
+  if (!slice.empty()) label.model += ", " + slice;
+  return label;
+}
+
+}  // namespace a3::eval

@@ -1,0 +1,28 @@
+// a3rig's own episode files (`a3rig run`'s RUN/episode.json, a sweep's
+// cells/<scenario>/<agent>/think-<t>/<slice>/seed-<n>/episode.json) say who flew them inside the
+// file, not in their path: `_meta.model`, and in `_rig` the scenario, seed, think time and slice.
+// This reads just those fields (simdjson on demand: the dialogue is skipped, not parsed), so a
+// run or sweep folder scores as one leaderboard row per agent configuration.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace a3::eval {
+
+// The name a3rig gives every episode it writes.
+inline constexpr const char* kRigEpisodeFileName = "episode.json";
+
+struct RigEpisodeLabel {
+  std::string model;     // `_meta.model`, then ", think <t>" and ", <slice>" when set
+  std::string scenario;  // `_rig.scenario`
+  int64_t seed = 0;      // `_rig.seed`
+};
+
+// nullopt when the file cannot be read or lacks `_meta.model` or `_rig.scenario` (not a3rig's);
+// the scorer still checks the file and reports what is wrong with it.
+std::optional<RigEpisodeLabel> read_rig_episode_label(const std::filesystem::path& path);
+
+}  // namespace a3::eval
