@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 #include <thread>
@@ -25,6 +26,7 @@
 #include "rigs/sweep/cell_runner.hpp"
 #include "rigs/sweep/slurm_job.hpp"
 #include "rigs/sweep/slurm_submit.hpp"
+#include "rigs/sweep/sweep_estimate.hpp"
 #include "rigs/sweep/sweep_report.hpp"
 #include "rigs/sweep/sweep_runner.hpp"
 
@@ -224,9 +226,10 @@ int run(const SweepArgs& args, const CLI::App& cmd) {
                                                  args.agents, args.think_times, args.slices, args.seeds);
   const sweep::Shard shard = sweep::parse_shard(args.shard);
   const std::filesystem::path shared_dir = default_shared_dir();
+  std::map<std::string, double> time_limit_s;
   for (const auto& scenario : axes.scenarios) {
     try {
-      (void)load_scenario(scenario, shared_dir);
+      time_limit_s[scenario] = load_scenario(scenario, shared_dir).mission.time_limit_s;
     } catch (const std::exception& e) {
       throw std::invalid_argument("--scenarios: '" + scenario + "': " + e.what());
     }
@@ -250,12 +253,19 @@ int run(const SweepArgs& args, const CLI::App& cmd) {
                grid.size(), axes.scenarios.size(), axes.agents.size(), axes.think_times.size(), axes.slices.size(),
                axes.seeds.size(), shard.index, shard.count, mine.size(), args.jobs, args.runtime.c_str(),
                args.out.c_str());
+  std::vector<bool> done(mine.size(), false);
+  std::vector<sweep::SweepCell> to_run;
+  for (std::size_t i = 0; i < mine.size(); ++i) {
+    done[i] = !args.rerun && sweep::check_cell(sweep::cell_dir(args.out, mine[i]), mine[i]).complete;
+    if (!done[i]) to_run.push_back(mine[i]);
+  }
+  const auto estimate = sweep::estimate_sweep(to_run, args.runtime, args.real_time_factor, args.jobs, time_limit_s);
+  std::fprintf(stderr, "a3rig sweep: %zu cells to run (%zu already complete): %s\n", to_run.size(),
+               mine.size() - to_run.size(), sweep::estimate_text(estimate, to_run.size(), args.real_time_factor).c_str());
   if (args.dry_run) {
-    for (const auto& cell : mine) {
-      const auto dir = sweep::cell_dir(args.out, cell);
-      const sweep::CellCheck check = sweep::check_cell(dir, cell);
-      const std::string line = sweep::shell_command(runner.command(cell, dir));  // to paste as it is
-      std::printf("%5zu  %s  %s\n", cell.index, check.complete && !args.rerun ? "done  " : "to run", line.c_str());
+    for (std::size_t i = 0; i < mine.size(); ++i) {
+      const std::string line = sweep::shell_command(runner.command(mine[i], sweep::cell_dir(args.out, mine[i])));
+      std::printf("%5zu  %s  %s\n", mine[i].index, done[i] ? "done  " : "to run", line.c_str());  // to paste as it is
     }
     return 0;
   }

@@ -10,6 +10,7 @@
 
 #include "rigs/sweep/sweep_report.hpp"
 #include "rigs/sweep/sweep_runner.hpp"
+#include "tests/integration/run_command.hpp"
 #include "tests/test_support.hpp"
 
 namespace a3::rigs::sweep {
@@ -31,6 +32,13 @@ TEST(SweepEndToEnd, ASlowAgentBreachesSeparationAndTheFigureIsDrawn) {
   options.out_dir = out;
   options.jobs = 2;
   const std::atomic<bool> no_stop{false};
+  // `--dry-run` says what is left and how long it will take (issue 34), before and after.
+  const std::string dry_run = std::string(A3RIG_EXE) + " sweep --dry-run --scenarios traffic-conflict --agents scripted " +
+                              "--think-times 0,90 --slices URLLC --seeds 1 --jobs 1 --out " + a3::test::quote(out.string());
+  auto dry = a3::test::run_command(dry_run, true);
+  EXPECT_EQ(dry.exit_status, 0) << dry.output;
+  EXPECT_NE(dry.output.find("2 cells to run (0 already complete): about 2 s (virtual time"), std::string::npos)
+      << dry.output;
 
   const SweepRunSummary summary = run_sweep(grid, options, runner, {}, no_stop);
   ASSERT_EQ(summary.counts.ran, 2u) << summary.rows[0].status << "\n" << summary.rows[1].status;
@@ -57,6 +65,9 @@ TEST(SweepEndToEnd, ASlowAgentBreachesSeparationAndTheFigureIsDrawn) {
   ASSERT_TRUE(report.plots.problem.empty()) << report.plots.problem;
   ASSERT_EQ(report.plots.pngs.size(), 1u);
   EXPECT_GT(fs::file_size(report.plots.pngs[0]), 10000u);
+
+  dry = a3::test::run_command(dry_run, true);
+  EXPECT_NE(dry.output.find("0 cells to run (2 already complete): nothing to run"), std::string::npos) << dry.output;
 
   const SweepRunSummary again = run_sweep(grid, options, runner, {}, no_stop);
   EXPECT_EQ(again.counts.skipped, 2u);
