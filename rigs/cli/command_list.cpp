@@ -17,7 +17,7 @@ const std::map<std::string, std::string>& command_groups() {
       {"run", "Fly"},       {"mcp", "Fly"},       {"sweep", "Fly"},    {"node", "Fly"},
       {"serve-model", "Serve"},
       {"score", "Evaluate"}, {"validate", "Evaluate"}, {"report", "Evaluate"}, {"generate", "Evaluate"},
-      {"scenario", "Tools"}, {"can", "Tools"}};
+      {"scenario", "Tools"}, {"can", "Tools"}, {"help", "Tools"}};
   return kGroups;
 }
 
@@ -28,6 +28,7 @@ constexpr const char* kExamples =
     "  a3rig score ../shared/alphabench/eval_runs                 the public corpus's leaderboard\n"
     "  a3rig scenario generate --seed 7 --difficulty hard         a generated mission as a file\n"
     "a3rig COMMAND --help gives a command's options, statuses and exit codes;\n"
+    "a3rig help COMMAND gives just its long texts (statuses, exit codes, environment, details);\n"
     "a3rig --check-args COMMAND ... checks a command line (flags, values, files) without running it.";
 
 }  // namespace
@@ -92,13 +93,17 @@ std::string CommandListFormatter::make_description(const CLI::App* app) const {
   return summary.empty() ? "" : wrapped(summary, kLineColumns) + "\n";
 }
 
-std::string CommandListFormatter::make_footer(const CLI::App* app) const {
-  if (app->get_parent() == nullptr) return CLI::Formatter::make_footer(app);  // the examples, aligned
-  std::string closing = help_sections(app->get_description()).closing;
-  if (!app->get_footer().empty()) closing += (closing.empty() ? "" : "\n") + app->get_footer();
+std::string closing_section(const CLI::App& command) {
+  std::string closing = help_sections(command.get_description()).closing;
+  if (!command.get_footer().empty()) closing += (closing.empty() ? "" : "\n") + command.get_footer();
   std::string spaced;  // a blank line between paragraphs
   for (const char c : closing) spaced += c == '\n' ? std::string("\n\n") : std::string(1, c);
   return closing.empty() ? "" : wrapped(spaced, kLineColumns) + "\n";
+}
+
+std::string CommandListFormatter::make_footer(const CLI::App* app) const {
+  if (app->get_parent() == nullptr) return CLI::Formatter::make_footer(app);  // the examples, aligned
+  return closing_section(*app);
 }
 
 std::string CommandListFormatter::make_option_desc(const CLI::Option* option) const {

@@ -24,6 +24,10 @@ struct HelpSections {
 };
 HelpSections help_sections(const std::string& description);
 
+// A command's closing section as its --help ends with it (exit status, environment, details),
+// wrapped; "" when it has none. `a3rig help COMMAND` prints just this.
+std::string closing_section(const CLI::App& command);
+
 // Lists a command's subcommands one line each (its first sentence), in their groups; a command's
 // own help as above.
 class CommandListFormatter : public CLI::Formatter {

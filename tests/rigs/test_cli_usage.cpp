@@ -121,6 +121,20 @@ TEST(CliUsage, QuietPrintsNoInfoLines) {
   std::filesystem::remove_all(out);
 }
 
+TEST(CliUsage, HelpCommandPrintsACommandsLongTextsWithoutItsOptions) {
+  Outcome o = a3rig("help run");
+  EXPECT_EQ(o.exit_status, 0) << o.output;
+  EXPECT_NE(o.output.find("Exit status: 0 the episode was written"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("A3_LLM_API_KEY"), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("--scenario"), std::string::npos) << "no options: " << o.output;
+  o = a3rig("help node fc");
+  EXPECT_EQ(o.exit_status, 0) << o.output;
+  o = a3rig("help flyfast");
+  EXPECT_EQ(o.exit_status, 2) << o.output;
+  EXPECT_NE(o.output.find("no command 'flyfast' (known: "), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("sweep"), std::string::npos) << o.output;
+}
+
 TEST(CliUsage, TheProgramsHelpFitsAScreenAndListsEveryCommandOnce) {
   const Outcome o = a3rig("--help");
   EXPECT_EQ(o.exit_status, 0) << o.output;
@@ -136,7 +150,7 @@ TEST(CliUsage, TheProgramsHelpFitsAScreenAndListsEveryCommandOnce) {
   }
   EXPECT_EQ(o.output.find("Other:"), std::string::npos) << "every command has its group: " << o.output;
   for (const std::string command : {"run", "mcp", "sweep", "serve-model", "score", "validate", "report", "generate",
-                                    "scenario", "can"}) {
+                                    "scenario", "can", "help"}) {
     EXPECT_NE(o.output.find("\n  " + command + " "), std::string::npos) << command << "\n" << o.output;
   }
 }
