@@ -9,14 +9,12 @@
 #include "common/channels.hpp"
 #include "common/log.hpp"
 #include "dynamics/battery.hpp"
+#include "common/text_format.hpp"
 
 namespace a3::dynamics {
 namespace {
 
-bool is_power_of_ten(uint64_t n) {
-  while (n >= 10 && n % 10 == 0) n /= 10;
-  return n == 1;
-}
+using common::is_power_of_ten;
 
 }  // namespace
 

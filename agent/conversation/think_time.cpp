@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/number_list.hpp"
+
 namespace a3::agent {
 namespace {
 
@@ -15,20 +17,7 @@ constexpr double kModelSigma = 0.5;
 const char* kForms = "expected a number of seconds, fixed:S, uniform:A,B, normal:MEAN,SD, lognormal:MEDIAN,SIGMA, exp:MEAN or model:NAME";
 
 std::vector<double> numbers(const std::string& text, const std::string& spec) {
-  std::vector<double> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    try {
-      std::size_t used = 0;
-      const double x = std::stod(item, &used);
-      if (used != item.size() || !std::isfinite(x) || x < 0.0) throw std::invalid_argument("");
-      out.push_back(x);
-    } catch (const std::exception&) {
-      throw std::invalid_argument("think time '" + spec + "': '" + item + "' is not a non-negative number");
-    }
-  }
-  return out;
+  return common::parse_number_list(text, spec, {"think time", true});
 }
 
 }  // namespace

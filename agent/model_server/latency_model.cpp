@@ -7,6 +7,9 @@
 #include <stdexcept>
 #include <vector>
 
+#include "common/number_list.hpp"
+#include "common/text_format.hpp"
+
 namespace a3::agent::model_server {
 namespace {
 
@@ -14,11 +17,7 @@ const char* kForms =
     "expected recorded, a number of seconds, fixed:S, uniform:A,B, normal:MEAN,SD, lognormal:MEDIAN,SIGMA, exp:MEAN, "
     "model:NAME, model-episode:NAME or tokens:PREFILL_TOK_PER_S,DECODE_TOK_PER_S[,TTFT_S]";
 
-std::string fmt(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", x);
-  return buf;
-}
+std::string fmt(double x) { return common::formatted("%.4g", x); }
 
 double tokens(const nlohmann::json& usage, const char* key) {
   if (!usage.is_object()) return 0.0;
@@ -27,20 +26,7 @@ double tokens(const nlohmann::json& usage, const char* key) {
 }
 
 std::vector<double> numbers(const std::string& text, const std::string& spec) {
-  std::vector<double> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    try {
-      std::size_t used = 0;
-      const double x = std::stod(item, &used);
-      if (used != item.size() || !std::isfinite(x)) throw std::invalid_argument("");
-      out.push_back(x);
-    } catch (const std::exception&) {
-      throw std::invalid_argument("latency '" + spec + "': '" + item + "' is not a number");
-    }
-  }
-  return out;
+  return common::parse_number_list(text, spec, {"latency", false});
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include "agent/http/request_checks.hpp"
 #include "agent/model_server/reply_shaping.hpp"
 #include "agent/model_server/request_body.hpp"
+#include "common/text_format.hpp"
 
 namespace a3::agent::model_server {
 namespace {
@@ -23,11 +24,7 @@ namespace {
 using nlohmann::json;
 using SteadyClock = std::chrono::steady_clock;
 
-std::string fmt(const char* format, double x) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, format, x);
-  return buf;
-}
+using common::formatted;
 
 std::size_t utf8_code_points(const std::string& s) {
   std::size_t n = 0;
@@ -112,7 +109,7 @@ ModelServer::ModelServer(std::unique_ptr<ModelResponder> responder, ModelServerO
     throw std::invalid_argument("port " + std::to_string(options_.port) + ": must be 0..65535 (0: any free port)");
   }
   if (!(options_.fail_rate >= 0.0 && options_.fail_rate <= 1.0)) {
-    throw std::invalid_argument("fail rate " + fmt("%g", options_.fail_rate) + ": must be between 0 and 1");
+    throw std::invalid_argument("fail rate " + formatted("%g", options_.fail_rate) + ": must be between 0 and 1");
   }
   if (options_.fail_first < 0) throw std::invalid_argument("fail-first: must be >= 0");
   const int s = options_.fail_status;
@@ -451,9 +448,9 @@ void ModelServer::record_answer(const ChatAnswer& a, double latency_s) {
   const double took_s = std::chrono::duration<double>(SteadyClock::now() - a.started).count();
   log("POST /v1/chat/completions 200 model=" + a.request["model"].get<std::string>() +
       (a.options.stream ? " stream" : "") + (a.options.n > 1 ? " n=" + std::to_string(a.options.n) : "") +
-      " prompt_chars=" + std::to_string(prompt_characters(a.request)) + fmt(" latency=%.3fs", latency_s) +
+      " prompt_chars=" + std::to_string(prompt_characters(a.request)) + formatted(" latency=%.3fs", latency_s) +
       " tokens=" + std::to_string(prompt_tokens) + "+" + std::to_string(completion_tokens) +
-      fmt(" took=%.3fs", took_s));
+      formatted(" took=%.3fs", took_s));
 }
 
 void ModelServer::handle_chat(const httplib::Request& req, httplib::Response& res, const httplib::ContentReader& reader) {

@@ -8,21 +8,16 @@
 
 #include "common/channels.hpp"
 #include "common/log.hpp"
+#include "common/text_format.hpp"
+#include "common/config_checks.hpp"
 
 namespace a3::agent {
 namespace {
 
-std::string fmt(const char* format, double a) {
-  char text[96];
-  std::snprintf(text, sizeof text, format, a);
-  return text;
-}
+using common::formatted;
 
 void require_non_negative(double value, const std::string& name) {
-  if (!std::isfinite(value) || value < 0.0) {
-    throw std::invalid_argument("AirspaceMonitorConfig." + name + " must be a finite number >= 0, got " +
-                                std::to_string(value));
-  }
+  common::require_non_negative(value, "AirspaceMonitorConfig." + name);
 }
 
 }  // namespace
@@ -118,7 +113,7 @@ void AirspaceMonitorNode::track(const a3lcm::vehicle_state_t& s, Violation& v, b
   v.active = false;
   const double lasted_s = static_cast<double>(s.utime_us - v.since_us) * 1e-6;
   publish(s, std::string(kind), v.worst,
-          "leave: " + what() + fmt(", lasted %.1f s", lasted_s) + fmt(", worst %.2f m", v.worst));
+          "leave: " + what() + formatted(", lasted %.1f s", lasted_s) + formatted(", worst %.2f m", v.worst));
 }
 
 void AirspaceMonitorNode::on_state(const a3lcm::vehicle_state_t& s) {
@@ -148,19 +143,19 @@ void AirspaceMonitorNode::on_state(const a3lcm::vehicle_state_t& s) {
     const double clearance = z.clearance_m(xy);
     const bool cleared = !inside && (clearance >= h || p.z() < z.floor_m - h || p.z() > z.ceiling_m + h);
     track(s, zones_[i], inside, cleared, "nfz_intrusion", std::max(-clearance, 0.0), true,
-          [&] { return "no-fly zone " + z.id + fmt(" (%.2f m inside)", std::max(-clearance, 0.0)); });
+          [&] { return "no-fly zone " + z.id + formatted(" (%.2f m inside)", std::max(-clearance, 0.0)); });
   }
 
   // Geofence.
   if (air.geofence.size() >= 3) {
     const double clearance = air.geofence_clearance_m(xy);
     track(s, fence_, !air.inside_geofence(xy), clearance >= h, "geofence_exit", std::max(-clearance, 0.0), true,
-          [&] { return "geofence" + fmt(" (%.2f m outside)", std::max(-clearance, 0.0)); });
+          [&] { return "geofence" + formatted(" (%.2f m outside)", std::max(-clearance, 0.0)); });
   }
 
   // Altitude envelope.
   track(s, high_, p.z() > air.max_altitude_m, p.z() <= air.max_altitude_m - h, "altitude_violation", p.z(), true,
-        [&] { return "above the maximum " + fmt("%.1f m", air.max_altitude_m) + fmt(" at %.2f m", p.z()); });
+        [&] { return "above the maximum " + formatted("%.1f m", air.max_altitude_m) + formatted(" at %.2f m", p.z()); });
   const double from_takeoff_m = (xy - takeoff_xy_).norm();
   const bool vertical_transit = std::abs(v.z()) >= config_.vertical_transit_speed_mps &&
                                 v.head<2>().norm() <= config_.vertical_transit_max_horizontal_mps;
@@ -168,8 +163,8 @@ void AirspaceMonitorNode::on_state(const a3lcm::vehicle_state_t& s) {
   track(s, low_, !exempt && p.z() < air.min_altitude_m, exempt || p.z() >= air.min_altitude_m + h,
         "altitude_violation", p.z(), false,
         [&] {
-          return "below the minimum " + fmt("%.1f m", air.min_altitude_m) + fmt(" at %.2f m", p.z()) +
-                 fmt(", %.1f m from the take-off point", from_takeoff_m);
+          return "below the minimum " + formatted("%.1f m", air.min_altitude_m) + formatted(" at %.2f m", p.z()) +
+                 formatted(", %.1f m from the take-off point", from_takeoff_m);
         });
 
   // Separation from peers.
@@ -190,7 +185,7 @@ void AirspaceMonitorNode::on_state(const a3lcm::vehicle_state_t& s) {
       if (!fresh) it->second = std::min(it->second, d);
     }
     track(s, peer.breach, d < peer.min_separation_m, d > peer.min_separation_m + h, "separation_breach", d, false,
-          [&] { return "peer " + id + fmt(" at %.2f m", d) + fmt(", minimum %.1f m", peer.min_separation_m); });
+          [&] { return "peer " + id + formatted(" at %.2f m", d) + formatted(", minimum %.1f m", peer.min_separation_m); });
   }
 
   // Crash.
@@ -200,7 +195,7 @@ void AirspaceMonitorNode::on_state(const a3lcm::vehicle_state_t& s) {
       std::lock_guard<std::mutex> lock(mutex_);
       ++counts_.crash;
     }
-    publish(s, "crash", v.norm(), "enter: crashed" + fmt(" at %.2f m/s", v.norm()));
+    publish(s, "crash", v.norm(), "enter: crashed" + formatted(" at %.2f m/s", v.norm()));
   }
 }
 

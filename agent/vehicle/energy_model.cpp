@@ -5,13 +5,13 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/config_checks.hpp"
+
 namespace a3::agent {
 namespace {
 
 void require_positive(double value, const std::string& where, const char* field) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    throw std::invalid_argument(where + "." + field + " must be a finite number > 0, got " + std::to_string(value));
-  }
+  common::require_positive(value, where + "." + field);
 }
 
 }  // namespace

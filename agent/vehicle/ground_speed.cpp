@@ -6,21 +6,19 @@
 #include <limits>
 #include <stdexcept>
 
+#include "common/config_checks.hpp"
+
 namespace a3::agent {
 namespace {
 
 constexpr double kGravity_mps2 = 9.80665;
 
 void require_positive(double value, const std::string& where, const char* field) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    throw std::invalid_argument(where + "." + field + " must be a finite number > 0, got " + std::to_string(value));
-  }
+  common::require_positive(value, where + "." + field);
 }
 
 void require_non_negative(double value, const std::string& where, const char* field) {
-  if (!std::isfinite(value) || value < 0.0) {
-    throw std::invalid_argument(where + "." + field + " must be a finite number >= 0, got " + std::to_string(value));
-  }
+  common::require_non_negative(value, where + "." + field);
 }
 
 }  // namespace

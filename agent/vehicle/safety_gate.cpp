@@ -6,17 +6,15 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "common/text_format.hpp"
+
 namespace a3::agent {
 namespace {
 
-std::string fmt(const char* format, double a) {
-  char text[64];
-  std::snprintf(text, sizeof text, format, a);
-  return text;
-}
+using common::formatted;
 
-std::string m(double value) { return fmt("%.1f m", value); }
-std::string pct(double value) { return fmt("%.1f %%", value); }
+std::string m(double value) { return formatted("%.1f m", value); }
+std::string pct(double value) { return formatted("%.1f %%", value); }
 
 void require_non_negative(double value, const std::string& where, const char* field) {
   if (!std::isfinite(value) || value < 0.0) {
@@ -164,8 +162,8 @@ std::string SafetyGate::check_battery(const Eigen::Vector3d& start, const std::v
 
 std::string SafetyGate::check_speed(double speed_mps) const {
   if (speed_mps > config_.max_speed_mps) {
-    return "speed " + fmt("%.1f m/s", speed_mps) + " is above the vehicle's maximum " +
-           fmt("%.1f m/s", config_.max_speed_mps);
+    return "speed " + formatted("%.1f m/s", speed_mps) + " is above the vehicle's maximum " +
+           formatted("%.1f m/s", config_.max_speed_mps);
   }
   return "";
 }

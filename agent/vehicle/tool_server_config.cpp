@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/config_checks.hpp"
+
 namespace a3::agent {
 namespace {
 
@@ -11,9 +13,7 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument(message);
 }
 
-void require_positive(double value, const std::string& name) {
-  require(std::isfinite(value) && value > 0.0, name + " must be a finite number > 0, got " + std::to_string(value));
-}
+using common::require_positive;
 
 }  // namespace
 

@@ -14,6 +14,7 @@
 #include "bridge/nodes/refusal_events.hpp"
 #include "common/channels.hpp"
 #include "common/log.hpp"
+#include "common/text_format.hpp"
 
 namespace a3::bridge {
 namespace {
@@ -22,10 +23,7 @@ constexpr int64_t kNodeStatusPeriod_us = 1'000'000;
 constexpr int64_t kRestartGap_us = 1'000'000;     // a state this far back: the dynamics restarted
 constexpr double kPowerAverageTime_s = 10.0;      // BatteryInfo.average_power_10sec
 
-bool is_power_of_ten(uint64_t n) {
-  while (n >= 10 && n % 10 == 0) n /= 10;
-  return n == 1;
-}
+using common::is_power_of_ten;
 
 std::string or_default(const std::string& channel, const char* fallback) {
   return channel.empty() ? fallback : channel;

@@ -10,6 +10,7 @@
 #include "bridge/nodes/fc_messages.hpp"
 #include "bridge/nodes/sensor_readings.hpp"
 #include "common/log.hpp"
+#include "common/text_format.hpp"
 
 namespace a3::bridge {
 namespace {
@@ -24,10 +25,7 @@ int64_t period_us_of(double rate_hz, const char* what) {
   return std::llround(1e6 / rate_hz);
 }
 
-bool is_power_of_ten(uint64_t n) {
-  while (n >= 10 && n % 10 == 0) n /= 10;
-  return n == 1;
-}
+using common::is_power_of_ten;
 
 }  // namespace
 

@@ -13,6 +13,7 @@
 #include "dynamics/vehicle_params.hpp"
 #include "rigs/core/scenario_generator_check.hpp"
 #include "rigs/core/scenario_generator_layout.hpp"
+#include "common/text_format.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -30,14 +31,10 @@ nlohmann::json polygon_json(const common::Polygon2d& poly) {
   return out;
 }
 
-std::string fmt(const char* format, double a, double b = 0.0, double c = 0.0, double d = 0.0) {
-  char out[200];
-  std::snprintf(out, sizeof out, format, a, b, c, d);
-  return out;
-}
+using common::formatted;
 
 std::string area_words(const common::Polygon2d& a) {
-  return fmt("the rectangle from (%.0f, %.0f) to (%.0f, %.0f)", a[0].x(), a[0].y(), a[2].x(), a[2].y());
+  return formatted("the rectangle from (%.0f, %.0f) to (%.0f, %.0f)", a[0].x(), a[0].y(), a[2].x(), a[2].y());
 }
 
 nlohmann::json objective_json(const DrawnObjective& o, std::string* words) {
@@ -47,23 +44,23 @@ nlohmann::json objective_json(const DrawnObjective& o, std::string* words) {
       j.update({{"area", polygon_json(o.area)}, {"altitude_m", o.altitude_m}, {"images_required", o.images_required},
                 {"sensor", "rgb"}, {"description", "lawnmower survey of " + o.id}});
       *words = "survey " + o.id + " (" + area_words(o.area) + ") with the RGB camera from " +
-               fmt("%.0f m, at least %.0f images", o.altitude_m, static_cast<double>(o.images_required));
+               formatted("%.0f m, at least %.0f images", o.altitude_m, static_cast<double>(o.images_required));
       break;
     case ObjectiveType::kThermalSearch:
       j.update({{"area", polygon_json(o.area)}, {"target", xy(o.target)}, {"radius_m", o.radius_m},
                 {"altitude_m", o.altitude_m}, {"sensor", "thermal"}, {"description", "find the person with the thermal camera"}});
-      *words = "search " + area_words(o.area) + " with the thermal camera from " + fmt("%.0f m", o.altitude_m) +
+      *words = "search " + area_words(o.area) + " with the thermal camera from " + formatted("%.0f m", o.altitude_m) +
                " for a person on the ground";
       break;
     case ObjectiveType::kImagePoint:
       j.update({{"point", xy(o.point)}, {"radius_m", o.radius_m}, {"altitude_m", o.altitude_m}, {"sensor", o.sensor}});
-      *words = "image " + o.id + fmt(" at (%.0f, %.0f) from %.0f m", o.point.x(), o.point.y(), o.altitude_m) +
+      *words = "image " + o.id + formatted(" at (%.0f, %.0f) from %.0f m", o.point.x(), o.point.y(), o.altitude_m) +
                " with the " + (o.sensor == "rgb" ? std::string("RGB") : o.sensor) + " camera";
       break;
     case ObjectiveType::kDelivery:
       j.update({{"point", xy(o.point)}, {"radius_m", o.radius_m}, {"drop_altitude_m", o.drop_altitude_m},
-                {"description", fmt("descend to %.0f m over the drop point", o.drop_altitude_m)}});
-      *words = "deliver the parcel to " + o.id + fmt(" at (%.0f, %.0f): descend to %.0f m over it", o.point.x(),
+                {"description", formatted("descend to %.0f m or lower over the drop point and hold 1 s", o.drop_altitude_m)}});
+      *words = "deliver the parcel to " + o.id + formatted(" at (%.0f, %.0f): descend to %.0f m or lower over it", o.point.x(),
                                                      o.point.y(), o.drop_altitude_m);
       break;
     case ObjectiveType::kReturnAndLand:
@@ -86,7 +83,7 @@ nlohmann::json objectives_json(const Layout& l, std::string* mission_words) {
 std::string mission_words(const Layout& l, const std::string& objectives) {
   std::string out = objectives;
   out[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(out[0])));
-  out += fmt(", cruising at %.0f m", l.cruise_altitude_m);
+  out += formatted(", cruising at %.0f m", l.cruise_altitude_m);
   if (!l.zones.empty()) out += "; stay out of the no-fly zones on the way";
   if (!l.traffic.empty()) {
     out += "; other drones patrol across the route at cruise altitude: keep separation, negotiating with "
@@ -116,7 +113,7 @@ nlohmann::json document_json(const GeneratorSpec& spec, const Layout& l, double 
   nlohmann::json objectives = objectives_json(l, &words);
   nlohmann::json doc = {
       {"name", "gen-" + std::to_string(spec.seed) + "-" + spec.knobs.difficulty},
-      {"description", "Generated mission " + generator_spec_text(spec) + fmt(" (sized for %.0f dialogue turns).", static_cast<double>(spec.knobs.turns))},
+      {"description", "Generated mission " + generator_spec_text(spec) + formatted(" (sized for %.0f dialogue turns).", static_cast<double>(spec.knobs.turns))},
       {"airframe", l.airframe},
       {"initial_state", initial_state_json(l)},
       {"mission", {{"description", mission_words(l, words)},
