@@ -27,7 +27,7 @@ std::string objective_rule_text(const Objective& o) {
     case ObjectiveType::kDelivery:
       return delivery_rule(o);
     case ObjectiveType::kThermalSearch:
-      return formatted("Done when the active thermal camera passes within %g m (horizontally) of the hidden target, "
+      return formatted("Done when the active thermal camera passes within %g m (horizontally) of the target (its place is not given), "
                        "at most %g m above the objective's altitude, or a thermal capture is taken there.",
                        o.radius_m, kThermalSightAbove_m);
     case ObjectiveType::kReturnAndLand:

@@ -83,8 +83,12 @@ TEST(SimdjsonParser, DecimalsAreTheSameDoublesBitForBit) {
     std::memcpy(&value, &bits, sizeof value);
     if (!std::isfinite(value)) continue;
     char text[96];
-    std::snprintf(text, sizeof text, "[%.17g,%g,%d.%0*d]", value, value, digits(random),
-                  places(random) + 1, digits(random) % 10);
+    // The width is at most 7 (places), which GCC at -O1 cannot see: the output fits in 96.
+    const int width = std::min(places(random) + 1, 7);
+    if (std::snprintf(text, sizeof text, "[%.17g,%g,%d.%0*d]", value, value, digits(random), width,
+                      digits(random) % 10) >= static_cast<int>(sizeof text)) {
+      continue;
+    }
     const ParserAgreement result = compare_parsers(text);
     EXPECT_FALSE(result.disagreement) << text << ": " << result.disagreement.value_or("");
     // Doubles in [1e-99, 1e99] have short exponents: simdjson takes them.
