@@ -13,8 +13,10 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
+#include "common/channel.hpp"
 #include "common/log.hpp"
 
 namespace a3::common {
@@ -113,7 +115,27 @@ class Bus {
     return publish_raw(channel, buffer.data(), static_cast<std::size_t>(size));
   }
 
+  // The same on a declared channel (channels.hpp), whose type the message must have.
+  template <typename Msg>
+  bool publish(const TypedChannel<Msg>& channel, const std::type_identity_t<Msg>& msg) {
+    return publish(channel.name, msg);
+  }
+  template <typename Msg>
+  bool publish(const RigChannel<Msg>& channel, const std::type_identity_t<Msg>& msg) {
+    return publish(std::string(channel.name), msg);
+  }
+
   // Subscribes with decoding; a message that does not decode as Msg is dropped and counted.
+  template <typename Msg>
+  SubscriptionId subscribe(const TypedChannel<Msg>& channel,
+                           std::type_identity_t<std::function<void(const Msg& msg, int64_t recv_utime_us)>> handler) {
+    return subscribe<Msg>(channel.name, std::move(handler));
+  }
+  template <typename Msg>
+  SubscriptionId subscribe(const RigChannel<Msg>& channel,
+                           std::type_identity_t<std::function<void(const Msg& msg, int64_t recv_utime_us)>> handler) {
+    return subscribe<Msg>(std::string(channel.name), std::move(handler));
+  }
   template <typename Msg>
   SubscriptionId subscribe(const std::string& channel,
                            std::function<void(const Msg& msg, int64_t recv_utime_us)> handler) {
@@ -143,11 +165,13 @@ class Bus {
   }
 
   uint64_t decode_failures() const { return decode_failures_.load(); }
+  // Where decode failures are counted: this bus, or the one a wrapper forwards to.
+  virtual Bus& counting_bus() { return *this; }
 
  protected:
   template <typename Msg>
   void count_decode_failure(const std::string& channel, std::size_t size) {
-    ++decode_failures_;
+    ++counting_bus().decode_failures_;
     log_warn("bus", "dropped a message on " + channel + " that does not decode as " +
                         std::string(Msg::getTypeName()) + " (" + std::to_string(size) + " bytes)");
   }

@@ -25,7 +25,7 @@ LockstepPacer::LockstepPacer(SteppedClock& clock, Bus& bus, LockstepConfig confi
   if (!(config_.real_time_factor > 0.0) || !std::isfinite(config_.real_time_factor)) {
     throw std::invalid_argument("lockstep: real-time factor must be a positive number");
   }
-  if (config_.channel.empty()) config_.channel = channels::kClock;
+  if (config_.channel.empty()) config_.channel = channels::kClock.name;
   followers_.assign(config_.followers.size(), FollowerAnswer{});
   start_mono_ns_ = base_mono_ns_ = config_.start_mono_ns >= 0 ? config_.start_mono_ns : WallClock::monotonic_now_ns();
   start_sim_us_ = base_sim_us_ = clock_.now_us();

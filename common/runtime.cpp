@@ -94,7 +94,7 @@ void RealTimeNodeThread::publish_stats(bool final) {
 }
 
 void RealTimeNodeThread::start() {
-  node_.start(*executor_, bus_);
+  node_.start(*executor_, bus_for_node(node_, bus_, node_bus_));
   if (stats_period_s_ > 0.0) {
     executor_->set_housekeeping(static_cast<int64_t>(stats_period_s_ * 1e9), [this] { publish_stats(false); });
   }

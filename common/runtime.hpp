@@ -25,6 +25,7 @@
 #include "common/lcm_bus.hpp"
 #include "common/lockstep_pacer.hpp"
 #include "common/node.hpp"
+#include "common/port_checked_bus.hpp"
 #include "common/realtime_executor.hpp"
 #include "common/virtual_bus.hpp"
 #include "common/virtual_scheduler.hpp"
@@ -34,7 +35,11 @@ namespace a3::common {
 class VirtualRuntime {
  public:
   VirtualRuntime() : bus_(scheduler_) {}
-  void add(Node& node) { node.start(scheduler_, bus_); }
+  // Starts the node on the bus as its ports() allow (port_checked_bus.hpp).
+  void add(Node& node) {
+    node_buses_.emplace_back();
+    node.start(scheduler_, bus_for_node(node, bus_, node_buses_.back()));
+  }
   // Runs all nodes until simulated time end_us.
   void run_until(int64_t end_us) { scheduler_.run_until(end_us); }
   VirtualScheduler& scheduler() { return scheduler_; }
@@ -44,6 +49,7 @@ class VirtualRuntime {
  private:
   VirtualScheduler scheduler_;
   VirtualBus bus_;
+  std::vector<std::unique_ptr<Bus>> node_buses_;  // after bus_: they go first
 };
 
 struct ThreadClock {
@@ -89,6 +95,7 @@ class RealTimeNodeThread {
   std::unique_ptr<SteppedClock> stepped_;
   const RealTimeClock* clock_;
   LcmBus bus_;
+  std::unique_ptr<Bus> node_bus_;  // bus_ as the node's ports() allow
   std::unique_ptr<LcmBus> answers_bus_;  // lockstep: the followers' answers (answers_lcm_url)
   std::unique_ptr<RealTimeExecutor> executor_;
   std::unique_ptr<LockstepPacer> pacer_;

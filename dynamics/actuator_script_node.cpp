@@ -12,7 +12,6 @@ namespace a3::dynamics {
 ActuatorScriptNode::ActuatorScriptNode(ActuatorScript script) : script_(std::move(script)) {
   if (!script_.throttle) throw std::invalid_argument("actuator script: no throttle function");
   if (!(script_.rate_hz > 0.0)) throw std::invalid_argument("actuator script: rate must be > 0 Hz");
-  if (script_.channel.empty()) script_.channel = common::channels::kActuators;
 }
 
 void ActuatorScriptNode::start(common::Executor& executor, common::Bus& bus) {
@@ -41,7 +40,7 @@ void ActuatorScriptNode::publish() {
   const auto throttle = script_.throttle(t_s);
   for (int i = 0; i < 4; ++i) cmd.throttle[i] = throttle[i];
   cmd.armed = true;
-  bus_->publish(script_.channel, cmd);
+  bus_->publish(common::channels::kActuators.of(script_.vehicle), cmd);
   ++published_;
 }
 

@@ -8,6 +8,7 @@
 #include <functional>
 #include <string>
 
+#include "common/channels.hpp"
 #include "common/node.hpp"
 
 namespace a3::dynamics {
@@ -18,7 +19,7 @@ struct ActuatorScript {
   double offset_s = 0.005;  // between the dynamics steps, so each command lands in one step
   double start_s = 0.0;
   double end_s = 1e300;
-  std::string channel;  // default: A3_ACTUATORS
+  common::VehicleId vehicle = 0;  // commands on this vehicle's A3_ACTUATORS
 };
 
 class ActuatorScriptNode final : public common::Node {
@@ -29,6 +30,9 @@ class ActuatorScriptNode final : public common::Node {
   explicit ActuatorScriptNode(ThrottleFn throttle) : ActuatorScriptNode(with_throttle(std::move(throttle))) {}
   std::string name() const override { return "actuator_script"; }
   void start(common::Executor& executor, common::Bus& bus) override;
+  std::optional<common::NodePorts> ports() const override {
+    return common::NodePorts().publishes(common::channels::kActuators.of(script_.vehicle));
+  }
   uint64_t published() const { return published_; }
 
  private:

@@ -27,16 +27,22 @@ DynamicsNode::DynamicsNode(DynamicsNodeConfig config) : config_(std::move(config
     throw std::invalid_argument("dynamics: command timeout must be > 0 s, got " +
                                 std::to_string(config_.command_timeout_s));
   }
-  if (config_.state_channel.empty()) config_.state_channel = common::channels::kState;
-  if (config_.actuator_channel.empty()) config_.actuator_channel = common::channels::kActuators;
-  if (config_.safety_channel.empty()) config_.safety_channel = common::channels::kSafety;
   period_us_ = static_cast<int64_t>(std::llround(1e6 / config_.publish_rate_hz));
+  state_channel_ = common::channels::kState.of(config_.vehicle);
   model_ = std::make_unique<QuadrotorModel>(config_.params);
   wind_ = std::make_unique<WindField>(config_.mean_wind_W_mps, config_.turbulence, config_.seed);
   integrator_ = make_integrator(config_.integrator, *model_, *wind_, config_.integrator_options);
 }
 
 DynamicsNode::~DynamicsNode() = default;
+
+std::optional<common::NodePorts> DynamicsNode::ports() const {
+  const common::VehicleId v = config_.vehicle;
+  return common::NodePorts()
+      .subscribes(common::channels::kActuators.of(v))
+      .publishes(common::channels::kState.of(v))
+      .publishes(common::channels::kSafety.of(v));
+}
 
 
 void DynamicsNode::start(common::Executor& executor, common::Bus& bus) {
@@ -48,8 +54,8 @@ void DynamicsNode::start(common::Executor& executor, common::Bus& bus) {
   integrator_->reset(config_.initial_state, start_us_ * 1e-6);
   command_radps_ = config_.initial_state.rotor_speed_radps;
   last_command_us_ = start_us_;
-  bus.subscribe<a3lcm::actuator_cmd_t>(
-      config_.actuator_channel,
+  bus.subscribe(
+      common::channels::kActuators.of(config_.vehicle),
       [this](const a3lcm::actuator_cmd_t& cmd, int64_t recv_us) { on_command(cmd, recv_us); });
   executor.schedule_at(start_us_, [this] { publish_state(start_us_); });
   executor.schedule(start_us_ + period_us_, period_us_, [this] { step(); });
@@ -115,7 +121,7 @@ void DynamicsNode::publish_events(int64_t utime_us) {
       for (int i = 0; i < 3; ++i) ev.p_W_m[i] = e.p_W_m[i];
       ev.value = e.vertical_speed_mps;
       ev.detail = "ground impact at " + std::to_string(-e.vertical_speed_mps) + " m/s";
-      bus_->publish(config_.safety_channel, ev);
+      bus_->publish(common::channels::kSafety.of(config_.vehicle), ev);
       common::log_warn("dynamics", ev.detail);
     } else {
       common::log_info("dynamics", std::string(to_string(e.kind)) + " at t=" + std::to_string(e.time_s) + " s");
@@ -132,7 +138,7 @@ void DynamicsNode::publish_command_timeout(int64_t utime_us) {
   for (int i = 0; i < 3; ++i) ev.p_W_m[i] = s.p_W_m[i];
   ev.value = last_command_us_ ? (utime_us - *last_command_us_) * 1e-6 : 0.0;
   ev.detail = "no rotor command for " + std::to_string(ev.value) + " s of simulated time: motors spun down";
-  bus_->publish(config_.safety_channel, ev);
+  bus_->publish(common::channels::kSafety.of(config_.vehicle), ev);
   common::log_warn("dynamics", ev.detail);
 }
 
@@ -165,7 +171,7 @@ void DynamicsNode::publish_state(int64_t utime_us) {
   msg.mass_kg = model_->mass_kg();
   msg.on_ground = integrator_->on_ground();
   msg.crashed = integrator_->crashed();
-  bus_->publish(config_.state_channel, msg);
+  bus_->publish(state_channel_, msg);
 }
 
 }  // namespace a3::dynamics

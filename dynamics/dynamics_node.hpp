@@ -22,6 +22,7 @@
 #include <string>
 
 #include "a3lcm/actuator_cmd_t.hpp"
+#include "a3lcm/vehicle_state_t.hpp"
 #include "common/node.hpp"
 #include "dynamics/integrator.hpp"
 
@@ -37,9 +38,7 @@ struct DynamicsNodeConfig {
   Eigen::Vector3d mean_wind_W_mps = Eigen::Vector3d::Zero();
   TurbulenceParams turbulence;
   uint64_t seed = 1;
-  std::string state_channel;     // default: A3_STATE
-  std::string actuator_channel;  // default: A3_ACTUATORS
-  std::string safety_channel;    // default: A3_SAFETY
+  common::VehicleId vehicle = 0;  // whose channels: A3_STATE, A3_ACTUATORS, A3_SAFETY (channel.hpp)
 };
 
 class DynamicsNode final : public common::Node {
@@ -49,6 +48,8 @@ class DynamicsNode final : public common::Node {
 
   std::string name() const override { return "dynamics"; }
   void start(common::Executor& executor, common::Bus& bus) override;
+  // Subscribes A3_ACTUATORS; publishes A3_STATE and A3_SAFETY (a crash).
+  std::optional<common::NodePorts> ports() const override;
 
   // steps, commands, rejected (NaN or infinite throttle), clamped (throttle outside [0, 1]),
   // stale_steps (steps run with the motors spun down for lack of commands), integration_errors.
@@ -72,6 +73,7 @@ class DynamicsNode final : public common::Node {
   common::Executor* executor_ = nullptr;
   common::Bus* bus_ = nullptr;
   int64_t period_us_ = 10000;
+  common::TypedChannel<a3lcm::vehicle_state_t> state_channel_;  // published every step: resolved once
   int64_t start_us_ = 0;
   uint64_t step_index_ = 0;
   RotorSpeeds command_radps_{};

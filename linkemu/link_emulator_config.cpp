@@ -53,6 +53,14 @@ void checked(const std::string& where, Fn fn) {
 
 }  // namespace
 
+LinkChannels LinkChannels::of_vehicle(common::VehicleId v) {
+  namespace ch = common::channels;
+  return {ch::kLinkUpTx.of(v).name,     ch::kLinkUpRx.of(v).name,      ch::kLinkDownTx.of(v).name,
+          ch::kLinkDownRx.of(v).name,   ch::kNet.of(v).name,           ch::kLinkRecord.of(v).name,
+          ch::kEdgeRequest.of(v).name,  ch::kEdgeReply.of(v).name,     ch::kSliceRequest.of(v).name,
+          ch::kSliceReply.of(v).name};
+}
+
 LinkChannels LinkChannels::with_suffix(const std::string& suffix) const {
   LinkChannels c = *this;
   for (std::string* name : {&c.up_tx, &c.up_rx, &c.down_tx, &c.down_rx, &c.net, &c.record,

@@ -22,16 +22,18 @@
 namespace a3::linkemu {
 
 struct LinkChannels {
-  std::string up_tx = common::channels::kLinkUpTx;
-  std::string up_rx = common::channels::kLinkUpRx;
-  std::string down_tx = common::channels::kLinkDownTx;
-  std::string down_rx = common::channels::kLinkDownRx;
-  std::string net = common::channels::kNet;
-  std::string record = common::channels::kLinkRecord;
-  std::string edge_request = common::channels::kEdgeRequest;
-  std::string edge_reply = common::channels::kEdgeReply;
-  std::string slice_request = common::channels::kSliceRequest;
-  std::string slice_reply = common::channels::kSliceReply;
+  std::string up_tx = common::channels::kLinkUpTx.base;
+  std::string up_rx = common::channels::kLinkUpRx.base;
+  std::string down_tx = common::channels::kLinkDownTx.base;
+  std::string down_rx = common::channels::kLinkDownRx.base;
+  std::string net = common::channels::kNet.base;
+  std::string record = common::channels::kLinkRecord.base;
+  std::string edge_request = common::channels::kEdgeRequest.base;
+  std::string edge_reply = common::channels::kEdgeReply.base;
+  std::string slice_request = common::channels::kSliceRequest.base;
+  std::string slice_reply = common::channels::kSliceReply.base;
+  // Vehicle n's link (channel.hpp: vehicle 0's are the defaults above).
+  static LinkChannels of_vehicle(common::VehicleId vehicle);
   // Every name with the same suffix appended (tests and benchmarks sharing a host).
   LinkChannels with_suffix(const std::string& suffix) const;
 };

@@ -64,6 +64,23 @@ LinkEmulatorNode::LinkEmulatorNode(LinkEmulatorConfig config, const SliceProfile
   }
 }
 
+std::optional<common::NodePorts> LinkEmulatorNode::ports() const {
+  const LinkChannels& c = config_.channels;
+  using common::TypedChannel;
+  common::NodePorts ports;
+  ports.subscribes(TypedChannel<a3lcm::link_message_t>{c.up_tx})
+      .subscribes(TypedChannel<a3lcm::link_message_t>{c.down_tx})
+      .subscribes(TypedChannel<a3lcm::slice_switch_request_t>{c.slice_request})
+      .listens(TypedChannel<a3lcm::edge_compute_request_t>{c.edge_request})  // for edge-compute clients
+      .publishes(TypedChannel<a3lcm::link_message_t>{c.up_rx})
+      .publishes(TypedChannel<a3lcm::link_message_t>{c.down_rx})
+      .publishes(TypedChannel<a3lcm::network_state_t>{c.net})
+      .publishes(TypedChannel<a3lcm::slice_switch_reply_t>{c.slice_reply})
+      .publishes(TypedChannel<a3lcm::edge_compute_reply_t>{c.edge_reply});
+  if (config_.publish_records) ports.publishes(TypedChannel<a3lcm::link_record_t>{c.record});
+  return ports;
+}
+
 void LinkEmulatorNode::start(common::Executor& executor, common::Bus& bus) {
   if (executor_ != nullptr) throw std::logic_error("LinkEmulatorNode::start called twice");
   executor_ = &executor;

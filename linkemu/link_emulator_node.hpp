@@ -41,6 +41,9 @@ class LinkEmulatorNode final : public common::Node {
 
   std::string name() const override { return "linkemu"; }
   void start(common::Executor& executor, common::Bus& bus) override;
+  // Subscribes the two directions' TX channels and the slice and edge requests; publishes the
+  // RX channels, A3_NET, the slice and edge replies and (publish_records) A3_LINK_RECORD.
+  std::optional<common::NodePorts> ports() const override;
 
   // Called for every record, on the executor's thread. Add before start().
   void add_record_sink(RecordSink sink) { sinks_.push_back(std::move(sink)); }

@@ -80,19 +80,36 @@ std::vector<Turn> ConversationNode::turns() const {
 }
 
 
+std::optional<common::NodePorts> ConversationNode::ports() const {
+  namespace ch = common::channels;
+  const common::VehicleId v = config_.vehicle;
+  return common::NodePorts()
+      .subscribes(ch::kNet.of(v))
+      .subscribes(ch::kLinkRecord.of(v))
+      .subscribes(ch::kLinkDownRx.of(v))
+      .subscribes(ch::kState.of(v))
+      .subscribes(ch::kFcStatus.of(v))
+      .subscribes(ch::kPayload.of(v))
+      .subscribes(ch::kTraffic)
+      .publishes(ch::kLinkUpTx.of(v))
+      .publishes(ch::kEpisode);
+}
+
 void ConversationNode::start(common::Executor& executor, common::Bus& bus) {
   executor_ = &executor;
   bus_ = &bus;
   start_s_ = executor.clock().now_us() * 1e-6;
-  bus.subscribe<a3lcm::network_state_t>(common::channels::kNet, [this](const a3lcm::network_state_t& n, int64_t) {
+  namespace ch = common::channels;
+  const common::VehicleId v = config_.vehicle;
+  bus.subscribe<a3lcm::network_state_t>(ch::kNet.of(v), [this](const a3lcm::network_state_t& n, int64_t) {
     net_ = n;
     have_net_ = true;
   });
-  bus.subscribe<a3lcm::link_record_t>(common::channels::kLinkRecord,
+  bus.subscribe<a3lcm::link_record_t>(ch::kLinkRecord.of(v),
                                       [this](const a3lcm::link_record_t& r, int64_t) { on_link_record(r); });
-  bus.subscribe<a3lcm::link_message_t>(common::channels::kLinkDownRx,
+  bus.subscribe<a3lcm::link_message_t>(ch::kLinkDownRx.of(v),
                                        [this](const a3lcm::link_message_t& m, int64_t) { on_downlink(m); });
-  bus.subscribe<a3lcm::vehicle_state_t>(common::channels::kState, [this](const a3lcm::vehicle_state_t& s, int64_t) {
+  bus.subscribe<a3lcm::vehicle_state_t>(ch::kState.of(v), [this](const a3lcm::vehicle_state_t& s, int64_t) {
     tracker_.on_state(s);
     if (!s.on_ground) has_flown_ = true;
     const double speed = std::sqrt(s.v_W_mps[0] * s.v_W_mps[0] + s.v_W_mps[1] * s.v_W_mps[1] + s.v_W_mps[2] * s.v_W_mps[2]);
@@ -102,11 +119,11 @@ void ConversationNode::start(common::Executor& executor, common::Bus& bus) {
       still_since_us_ = -1;
     }
   });
-  bus.subscribe<a3lcm::fc_status_t>(common::channels::kFcStatus,
+  bus.subscribe<a3lcm::fc_status_t>(ch::kFcStatus.of(v),
                                     [this](const a3lcm::fc_status_t& s, int64_t) { tracker_.on_fc_status(s); });
-  bus.subscribe<a3lcm::payload_event_t>(common::channels::kPayload,
+  bus.subscribe<a3lcm::payload_event_t>(ch::kPayload.of(v),
                                         [this](const a3lcm::payload_event_t& e, int64_t) { tracker_.on_payload(e); });
-  bus.subscribe<a3lcm::traffic_state_t>(common::channels::kTraffic, [this](const a3lcm::traffic_state_t& t, int64_t) {
+  bus.subscribe<a3lcm::traffic_state_t>(ch::kTraffic, [this](const a3lcm::traffic_state_t& t, int64_t) {
     for (auto& known : traffic_) {
       if (known.id == t.id) {
         known = t;
@@ -127,7 +144,7 @@ void ConversationNode::start(common::Executor& executor, common::Bus& bus) {
     hb.payload.assign(body.begin(), body.end());
     hb.payload_length = static_cast<int32_t>(hb.payload.size());
     hb.payload_size_bytes = 64;
-    bus_->publish(common::channels::kLinkUpTx, hb);
+    bus_->publish(common::channels::kLinkUpTx.of(config_.vehicle), hb);
     ++counters_.heartbeats;
     agent_->on_mission_time(now_s());
   });
@@ -359,7 +376,7 @@ void ConversationNode::send_turn_message() {
   m.payload_size_bytes = m.payload_length;
   current_.sent_s = now_s();
   awaiting_record_ = true;
-  bus_->publish(common::channels::kLinkUpTx, m);
+  bus_->publish(common::channels::kLinkUpTx.of(config_.vehicle), m);
   // A link emulator that never answers must not hold the dialogue: keep the n_t heard last.
   record_timer_ = executor_->schedule_after(2'000'000, [this] {
     if (!awaiting_record_) return;
@@ -411,7 +428,7 @@ void ConversationNode::dispatch(const nlohmann::json& actions) {
     pending_.push_back(Pending{});
     ActionEnvelope env{current_.number, static_cast<int>(i), action};
     const auto msg = encode_action(env, next_message_id_++, executor_->clock().now_us(), config_.sender);
-    bus_->publish(common::channels::kLinkUpTx, msg);
+    bus_->publish(common::channels::kLinkUpTx.of(config_.vehicle), msg);
     ++counters_.actions_sent;
     const double timeout_s = is_image_action(action) ? config_.image_timeout_s : config_.observation_timeout_s;
     pending_[i].timer = executor_->schedule_after(static_cast<int64_t>(timeout_s * 1e6), [this, i] { on_action_timeout(i); });

@@ -36,6 +36,7 @@
 namespace a3::agent {
 
 struct ConversationConfig {
+  common::VehicleId vehicle = 0;    // the vehicle the agent flies: its link, state and payload channels
   Mission mission;
   nlohmann::json initial_state;     // the scenario's α³-Bench initial_state
   nlohmann::json airspace_brief;    // what agents are told of no-fly zones and traffic
@@ -64,6 +65,9 @@ class ConversationNode final : public common::Node {
   ~ConversationNode() override;
 
   std::string name() const override { return "conversation"; }
+  // Subscribes the vehicle's A3_NET, A3_LINK_RECORD, the link's down RX, A3_STATE, A3_FC_STATUS,
+  // A3_PAYLOAD and A3_TRAFFIC; publishes the link's up TX and A3_EPISODE.
+  std::optional<common::NodePorts> ports() const override;
   void start(common::Executor& executor, common::Bus& bus) override;
 
   bool finished() const { return finished_.load(); }

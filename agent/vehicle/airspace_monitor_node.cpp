@@ -46,7 +46,7 @@ AirspaceMonitorNode::AirspaceMonitorNode(AirspaceMonitorConfig config) : config_
 
 void AirspaceMonitorNode::start(common::Executor&, common::Bus& bus) {
   bus_ = &bus;
-  bus.subscribe<a3lcm::vehicle_state_t>(common::channels::kState,
+  bus.subscribe<a3lcm::vehicle_state_t>(common::channels::kState.of(config_.vehicle),
                                         [this](const a3lcm::vehicle_state_t& s, int64_t) { on_state(s); });
   bus.subscribe<a3lcm::traffic_state_t>(common::channels::kTraffic,
                                         [this](const a3lcm::traffic_state_t& t, int64_t) { on_traffic(t); });
@@ -89,7 +89,7 @@ void AirspaceMonitorNode::publish(const a3lcm::vehicle_state_t& s, const std::st
     std::lock_guard<std::mutex> lock(mutex_);
     events_.push_back(e);
   }
-  bus_->publish(common::channels::kSafety, e);
+  bus_->publish(common::channels::kSafety.of(config_.vehicle), e);
 }
 
 template <typename WhatFn>

@@ -30,11 +30,13 @@
 #include "a3lcm/traffic_state_t.hpp"
 #include "a3lcm/vehicle_state_t.hpp"
 #include "agent/airspace.hpp"
+#include "common/channels.hpp"
 #include "common/node.hpp"
 
 namespace a3::agent {
 
 struct AirspaceMonitorConfig {
+  common::VehicleId vehicle = 0;            // whose A3_STATE it watches and A3_SAFETY it reports on
   Airspace airspace;                        // envelope, geofence, zones; traffic gives each peer's min separation
   double default_min_separation_m = 30.0;   // for peers on A3_TRAFFIC not in airspace.traffic
   double takeoff_radius_m = 15.0;           // below the minimum this close to the take-off point is allowed
@@ -55,6 +57,14 @@ class AirspaceMonitorNode final : public common::Node {
   explicit AirspaceMonitorNode(AirspaceMonitorConfig config);
 
   std::string name() const override { return "airspace_monitor"; }
+  // Subscribes A3_STATE and A3_TRAFFIC; publishes A3_SAFETY.
+  std::optional<common::NodePorts> ports() const override {
+    namespace ch = common::channels;
+    return common::NodePorts()
+        .subscribes(ch::kState.of(config_.vehicle))
+        .subscribes(ch::kTraffic)
+        .publishes(ch::kSafety.of(config_.vehicle));
+  }
   void start(common::Executor& executor, common::Bus& bus) override;
 
   // nfz_intrusion, separation_breach, geofence_exit, altitude_violation, crash (violations

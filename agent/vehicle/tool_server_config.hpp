@@ -16,6 +16,7 @@
 #include "agent/vehicle/sensor_suite.hpp"
 #include "agent/vehicle/swarm_peer.hpp"
 #include "agent/vehicle/weather_service.hpp"
+#include "common/channel.hpp"
 
 namespace a3::agent {
 
@@ -29,6 +30,7 @@ struct RouteConfig {
 };
 
 struct ToolServerConfig {
+  common::VehicleId vehicle = 0;  // whose channels (common/channel.hpp)
   // Geofence, altitude envelope, no-fly zones and peer traffic (initial_state.airspace plus
   // the scenario's extras).
   Airspace airspace;

@@ -62,18 +62,38 @@ ToolServerNode::ToolServerNode(ToolServerConfig config, const ToolCatalog& catal
 
 ToolServerNode::~ToolServerNode() = default;
 
+std::optional<common::NodePorts> ToolServerNode::ports() const {
+  namespace ch = common::channels;
+  const common::VehicleId v = config_.vehicle;
+  return common::NodePorts()
+      .subscribes(ch::kLinkUpRx.of(v))
+      .subscribes(ch::kFcStatus.of(v))
+      .subscribes(ch::kState.of(v))
+      .subscribes(ch::kNet.of(v))
+      .subscribes(ch::kSliceReply.of(v))
+      .publishes(ch::kLinkDownTx.of(v))
+      .publishes(ch::kFcCommand.of(v))
+      .publishes(ch::kSliceRequest.of(v))
+      .publishes(ch::kPayload.of(v))
+      .publishes(ch::kSafety.of(v))
+      .publishes(ch::kTraffic);  // its peers' states (none without peers)
+}
+
 void ToolServerNode::start(common::Executor& executor, common::Bus& bus) {
   executor_ = &executor;
   bus_ = &bus;
   namespace ch = common::channels;
-  bus.subscribe<a3lcm::link_message_t>(ch::kLinkUpRx,
+  const common::VehicleId v = config_.vehicle;
+  bus.subscribe<a3lcm::link_message_t>(ch::kLinkUpRx.of(v),
                                        [this](const a3lcm::link_message_t& m, int64_t) { on_link_message(m); });
-  bus.subscribe<a3lcm::fc_status_t>(ch::kFcStatus, [this](const a3lcm::fc_status_t& s, int64_t) { on_fc_status(s); });
-  bus.subscribe<a3lcm::vehicle_state_t>(ch::kState,
+  bus.subscribe<a3lcm::fc_status_t>(ch::kFcStatus.of(v),
+                                    [this](const a3lcm::fc_status_t& s, int64_t) { on_fc_status(s); });
+  bus.subscribe<a3lcm::vehicle_state_t>(ch::kState.of(v),
                                         [this](const a3lcm::vehicle_state_t& s, int64_t) { on_true_state(s); });
-  bus.subscribe<a3lcm::network_state_t>(ch::kNet, [this](const a3lcm::network_state_t& n, int64_t) { net_ = n; });
+  bus.subscribe<a3lcm::network_state_t>(ch::kNet.of(v),
+                                        [this](const a3lcm::network_state_t& n, int64_t) { net_ = n; });
   bus.subscribe<a3lcm::slice_switch_reply_t>(
-      ch::kSliceReply, [this](const a3lcm::slice_switch_reply_t& r, int64_t) { on_slice_reply(r); });
+      ch::kSliceReply.of(v), [this](const a3lcm::slice_switch_reply_t& r, int64_t) { on_slice_reply(r); });
   if (!swarm_.peers().empty()) {
     executor.schedule_every(seconds_to_us(1.0 / config_.traffic_rate_hz), [this] { publish_traffic(); });
   }
@@ -93,7 +113,7 @@ void ToolServerNode::on_link_message(const a3lcm::link_message_t& m) {
     c.seq = seq_;
     c.command = a3lcm::fc_command_t::HEARTBEAT;
     c.yaw_deg = std::numeric_limits<double>::quiet_NaN();
-    bus_->publish(common::channels::kFcCommand, c);
+    bus_->publish(common::channels::kFcCommand.of(config_.vehicle), c);
     ++counters_->heartbeats_forwarded;
     return;
   }
@@ -261,7 +281,7 @@ void ToolServerNode::finish(nlohmann::json obs, int64_t extra_bytes) {
   }
   ObservationEnvelope envelope{current_->turn, current_->action_index, std::move(obs)};
   const int64_t now_us = executor_->clock().now_us();
-  bus_->publish(common::channels::kLinkDownTx,
+  bus_->publish(common::channels::kLinkDownTx.of(config_.vehicle),
                 encode_observation(envelope, next_message_id_++, now_us, config_.sender, extra_bytes));
   ++counters_->observations_sent;
   current_.reset();
@@ -293,7 +313,7 @@ void ToolServerNode::finish_gate_refusal(const std::string& reason) {
   for (int k = 0; k < 3; ++k) e.p_W_m[k] = p[k];
   e.value = 0.0;
   e.detail = tool + ": " + reason;
-  bus_->publish(common::channels::kSafety, e);
+  bus_->publish(common::channels::kSafety.of(config_.vehicle), e);
   nlohmann::json result = refused_result(reason, "safety_gate");
   result["pose"] = pose_now();
   finish_mcp(result);

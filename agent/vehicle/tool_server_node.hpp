@@ -66,6 +66,10 @@ class ToolServerNode final : public common::Node, private VehicleServices {
   ~ToolServerNode() override;
 
   std::string name() const override { return "tool_server"; }
+  // Subscribes the link's up RX, A3_FC_STATUS, A3_STATE, A3_NET and the slice replies; publishes
+  // the link's down TX, A3_FC_CMD, the slice requests, A3_PAYLOAD, A3_SAFETY and (its peers)
+  // A3_TRAFFIC.
+  std::optional<common::NodePorts> ports() const override;
   void start(common::Executor& executor, common::Bus& bus) override;
 
   // link_messages (received on A3_LINK_UP_RX), malformed_dropped (not a well-formed envelope,

@@ -40,7 +40,7 @@ int32_t ToolServerNode::send_fc(int8_t command, const Eigen::Vector3d& target, d
   for (int k = 0; k < 3; ++k) c.target_W_m[k] = target[k];
   c.speed_limit_mps = speed_mps;
   c.yaw_deg = yaw_deg;
-  bus_->publish(common::channels::kFcCommand, c);
+  bus_->publish(common::channels::kFcCommand.of(config_.vehicle), c);
   ++counters_->fc_commands;
   return c.seq;
 }
@@ -128,7 +128,7 @@ void ToolServerNode::request_slice_switch(const std::string& slice, SliceContinu
   request.request_id = next_slice_request_++;
   request.requester = config_.sender;
   request.slice = slice;
-  bus_->publish(common::channels::kSliceRequest, request);
+  bus_->publish(common::channels::kSliceRequest.of(config_.vehicle), request);
   awaited_slice_request_ = request.request_id;
   slice_then_ = std::move(then);
   slice_timer_ = executor_->schedule_after(seconds_to_us(config_.slice_reply_timeout_s), [this] {
@@ -175,7 +175,7 @@ void ToolServerNode::publish_payload_event(const std::string& kind, const std::s
   }
   for (int k = 0; k < 3; ++k) e.p_W_m[k] = p[k];
   e.yaw_deg = yaw;
-  bus_->publish(common::channels::kPayload, e);
+  bus_->publish(common::channels::kPayload.of(config_.vehicle), e);
 }
 
 const ImageRecord& ToolServerNode::capture(const SensorInfo& sensor, bool downlink) {

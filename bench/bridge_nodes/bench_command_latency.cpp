@@ -57,7 +57,7 @@ class RestingVehicle final : public common::Node {
       s.power_w = 5.0;
       s.mass_kg = 1.5;
       s.on_ground = true;
-      bus.publish(common::channels::kState, s);
+      bus.publish(common::channels::kState.of(0), s);
     });
   }
 };
@@ -69,7 +69,7 @@ class Ground final : public common::Node {
   void start(common::Executor& executor, common::Bus& bus) override {
     executor_ = &executor;
     bus_ = &bus;
-    bus.subscribe<a3lcm::fc_status_t>(common::channels::kFcStatus,
+    bus.subscribe<a3lcm::fc_status_t>(common::channels::kFcStatus.of(0),
                                       [this](const a3lcm::fc_status_t&, int64_t) { ++statuses; });
     executor.schedule_every(200'000, [this] { send(a3lcm::fc_command_t::HEARTBEAT); });
   }
@@ -82,7 +82,7 @@ class Ground final : public common::Node {
     c.target_W_m[2] = 5.0;
     c.yaw_deg = std::nan("");
     c.utime_us = executor_->clock().now_us();
-    bus_->publish(common::channels::kFcCommand, c);
+    bus_->publish(common::channels::kFcCommand.of(0), c);
     return c.utime_us;
   }
   std::atomic<uint64_t> statuses{0};

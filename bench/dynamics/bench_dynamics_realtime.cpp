@@ -42,7 +42,7 @@ class StateArrivals final : public common::Node {
  public:
   std::string name() const override { return "state_arrivals"; }
   void start(common::Executor&, common::Bus& bus) override {
-    bus.subscribe<a3lcm::vehicle_state_t>(common::channels::kState, [this](const a3lcm::vehicle_state_t& s, int64_t) {
+    bus.subscribe<a3lcm::vehicle_state_t>(common::channels::kState.of(0), [this](const a3lcm::vehicle_state_t& s, int64_t) {
       const int64_t now_ns = common::WallClock::monotonic_now_ns();
       std::lock_guard<std::mutex> lock(mutex_);
       arrivals_.push_back({s.utime_us, now_ns, s.p_W_m[2]});

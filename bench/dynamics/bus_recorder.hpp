@@ -20,7 +20,7 @@ class BusRecorder final : public common::Node {
   explicit BusRecorder(bool keep_all = true) : keep_all_(keep_all) {}
   std::string name() const override { return "recorder"; }
   void start(common::Executor&, common::Bus& bus) override {
-    bus.subscribe<a3lcm::vehicle_state_t>(common::channels::kState,
+    bus.subscribe<a3lcm::vehicle_state_t>(common::channels::kState.of(0),
                                           [this](const a3lcm::vehicle_state_t& s, int64_t) {
                                             std::lock_guard<std::mutex> lock(mutex_);
                                             last_state_ = s;
@@ -30,7 +30,7 @@ class BusRecorder final : public common::Node {
     // Only when commands are kept: a subscriber that drops them still costs a delivery per
     // command, which the speed benchmarks would count against the node.
     if (!keep_all_) return;
-    bus.subscribe<a3lcm::actuator_cmd_t>(common::channels::kActuators,
+    bus.subscribe<a3lcm::actuator_cmd_t>(common::channels::kActuators.of(0),
                                          [this](const a3lcm::actuator_cmd_t& c, int64_t) {
                                            std::lock_guard<std::mutex> lock(mutex_);
                                            commands_.push_back(c);

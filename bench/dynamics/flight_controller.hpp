@@ -243,7 +243,7 @@ class FlightControllerNode final : public common::Node {
   std::string name() const override { return "flight_controller"; }
   void start(common::Executor& executor, common::Bus& bus) override {
     bus_ = &bus;
-    bus.subscribe<a3lcm::vehicle_state_t>(common::channels::kState, [this](const a3lcm::vehicle_state_t& s, int64_t) {
+    bus.subscribe<a3lcm::vehicle_state_t>(common::channels::kState.of(0), [this](const a3lcm::vehicle_state_t& s, int64_t) {
       state_ = s;
       have_state_ = true;
       ++states_received_;
@@ -267,7 +267,7 @@ class FlightControllerNode final : public common::Node {
     const auto throttle = controller_.throttle(t_us * 1e-6, input_of(state_));
     for (int i = 0; i < 4; ++i) cmd.throttle[i] = throttle[i];
     cmd.armed = true;
-    bus_->publish(common::channels::kActuators, cmd);
+    bus_->publish(common::channels::kActuators.of(0), cmd);
     ++published_;
   }
 

@@ -54,8 +54,8 @@ class Sender final : public common::Node {
       if (sent_ >= n_) return;
       message_.message_id = sent_++;
       message_.utime_us = message_.sent_utime_us = executor.clock().now_us();
-      bus.publish(common::channels::kLinkUpTx, message_);
-      bus.publish(common::channels::kLinkDownTx, message_);
+      bus.publish(common::channels::kLinkUpTx.of(0), message_);
+      bus.publish(common::channels::kLinkDownTx.of(0), message_);
     });
   }
 

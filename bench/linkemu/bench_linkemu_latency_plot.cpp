@@ -37,7 +37,7 @@ class Sender final : public common::Node {
       if (sent_ >= n_) return;
       message_.message_id = sent_++;
       message_.utime_us = message_.sent_utime_us = executor.clock().now_us();
-      bus.publish(common::channels::kLinkUpTx, message_);
+      bus.publish(common::channels::kLinkUpTx.of(0), message_);
     });
   }
 

@@ -25,9 +25,6 @@ constexpr double kPowerAverageTime_s = 10.0;      // BatteryInfo.average_power_1
 
 using common::is_power_of_ten;
 
-std::string or_default(const std::string& channel, const char* fallback) {
-  return channel.empty() ? fallback : channel;
-}
 
 }  // namespace
 
@@ -51,11 +48,17 @@ BridgeNode::BridgeNode(CanBus& can, BridgeNodeConfig config)
     throw std::invalid_argument("bridge node: fc node ID " + std::to_string(config_.fc_node_id) +
                                 " must be 1..127 and not the bridge's own (" + std::to_string(config_.node_id) + ")");
   }
-  config_.state_channel = or_default(config_.state_channel, common::channels::kState);
-  config_.actuator_channel = or_default(config_.actuator_channel, common::channels::kActuators);
-  config_.command_channel = or_default(config_.command_channel, common::channels::kFcCommand);
-  config_.status_channel = or_default(config_.status_channel, common::channels::kFcStatus);
-  config_.safety_channel = or_default(config_.safety_channel, common::channels::kSafety);
+  namespace ch = common::channels;
+  const common::VehicleId v = config_.vehicle;
+  channels_ = {ch::kState.of(v), ch::kActuators.of(v), ch::kFcCommand.of(v), ch::kFcStatus.of(v), ch::kSafety.of(v)};
+}
+
+std::optional<common::NodePorts> BridgeNode::ports() const {
+  common::NodePorts ports;
+  ports.subscribes(channels_.state).subscribes(channels_.command);
+  if (config_.forward_sim_clock) ports.subscribes(common::channels::kClock);
+  ports.publishes(channels_.actuators).publishes(channels_.status).publishes(channels_.safety);
+  return ports;
 }
 
 BridgeNode::~BridgeNode() { stop(); }
@@ -81,9 +84,9 @@ void BridgeNode::start(common::Executor& executor, common::Bus& bus) {
   });
   dronecan_.publish_node_status_every(kNodeStatusPeriod_us);
   dronecan_.start(executor);
-  bus.subscribe<a3lcm::vehicle_state_t>(config_.state_channel,
+  bus.subscribe<a3lcm::vehicle_state_t>(channels_.state,
                                         [this](const a3lcm::vehicle_state_t& s, int64_t) { on_state(s); });
-  bus.subscribe<a3lcm::fc_command_t>(config_.command_channel,
+  bus.subscribe<a3lcm::fc_command_t>(channels_.command,
                                      [this](const a3lcm::fc_command_t& c, int64_t) { on_command(c); });
   if (config_.forward_sim_clock) {
     // A later round of a time is for the ground's followers; the flight controller has it already.
@@ -205,7 +208,7 @@ void BridgeNode::on_esc(const EscRawCommand& esc) {
   }
   if (clamped) warn(++counters_.esc_clamped, "took a reverse (negative) esc.RawCommand as 0");
   ++counters_.esc_frames;
-  bus_->publish(config_.actuator_channel, out);
+  bus_->publish(channels_.actuators, out);
   last_actuator_ = out;
   have_actuator_ = true;
 }
@@ -217,13 +220,13 @@ void BridgeNode::on_grant(int64_t utime_us) {
   SimClock clock;
   clock.utime_us = static_cast<uint64_t>(std::max<int64_t>(utime_us, 0));
   publish_can(clock, kPriorityHigh);
-  if (utime_us == last_grant_us_ && have_actuator_) bus_->publish(config_.actuator_channel, last_actuator_);
+  if (utime_us == last_grant_us_ && have_actuator_) bus_->publish(channels_.actuators, last_actuator_);
   last_grant_us_ = utime_us;
 }
 
 void BridgeNode::on_status(const FcStatus& status) {
   ++counters_.statuses;
-  bus_->publish(config_.status_channel, fc_status_from_can(status, executor_->clock().now_us()));
+  bus_->publish(channels_.status, fc_status_from_can(status, executor_->clock().now_us()));
 }
 
 bool BridgeNode::from_fc(const ReceivedTransfer& t) {
@@ -243,7 +246,7 @@ void BridgeNode::on_fc_refusal(const FcCommandRefused& report) {
 
 void BridgeNode::publish_safety(const a3lcm::safety_event_t& event) {
   ++counters_.refusal_events;
-  bus_->publish(config_.safety_channel, event);
+  bus_->publish(channels_.safety, event);
 }
 
 void BridgeNode::update_health() {

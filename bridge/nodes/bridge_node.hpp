@@ -41,6 +41,7 @@
 #include "bridge/nodes/command_sources.hpp"
 #include "bridge/nodes/rate_schedule.hpp"
 #include "bridge/nodes/sensor_frames.hpp"
+#include "common/channels.hpp"
 #include "common/node.hpp"
 
 namespace a3::bridge {
@@ -65,11 +66,7 @@ struct BridgeNodeConfig {
   uint64_t seed = 1;
   SensorRates rates;
   int64_t state_timeout_us = 500'000;
-  std::string state_channel;      // default A3_STATE
-  std::string actuator_channel;   // default A3_ACTUATORS
-  std::string command_channel;    // default A3_FC_CMD
-  std::string status_channel;     // default A3_FC_STATUS
-  std::string safety_channel;     // default A3_SAFETY
+  common::VehicleId vehicle = 0;  // whose A3_STATE, A3_ACTUATORS, A3_FC_CMD, A3_FC_STATUS, A3_SAFETY
   // Lockstep (DESIGN.md "Time"): forward each A3_CLOCK grant to the flight controller as an
   // a3.sim.Clock frame, after the sensor frames of that time; on a repeated grant, publish the
   // last A3_ACTUATORS again (the pacer repeats a grant it has no answer to).
@@ -85,6 +82,9 @@ class BridgeNode final : public common::Node {
 
   std::string name() const override { return "bridge"; }
   void start(common::Executor& executor, common::Bus& bus) override;
+  // Subscribes A3_STATE, A3_FC_CMD (and A3_CLOCK in lockstep); publishes A3_ACTUATORS,
+  // A3_FC_STATUS and A3_SAFETY.
+  std::optional<common::NodePorts> ports() const override;
   // Stops receiving and the timers (the executor's thread, or after it stopped).
   void stop();
 
@@ -114,7 +114,17 @@ class BridgeNode final : public common::Node {
   void update_health();
   void warn(uint64_t count, const std::string& message) const;
 
+  // The vehicle's channels, resolved once.
+  struct Channels {
+    common::TypedChannel<a3lcm::vehicle_state_t> state;
+    common::TypedChannel<a3lcm::actuator_cmd_t> actuators;
+    common::TypedChannel<a3lcm::fc_command_t> command;
+    common::TypedChannel<a3lcm::fc_status_t> status;
+    common::TypedChannel<a3lcm::safety_event_t> safety;
+  };
+
   BridgeNodeConfig config_;
+  Channels channels_;
   LocalFrame frame_;
   SensorModel sensors_;
   DroneCanNode dronecan_;

@@ -56,6 +56,8 @@ class FcNode final : public common::Node {
   ~FcNode() override;
 
   std::string name() const override { return "fc"; }
+  // None: a flight controller talks only CAN (its clock, in lockstep, comes as a3.sim.Clock).
+  std::optional<common::NodePorts> ports() const override { return common::NodePorts(); }
   void start(common::Executor& executor, common::Bus& bus) override;
   // Stops receiving and the timers (the executor's thread, or after it stopped).
   void stop();

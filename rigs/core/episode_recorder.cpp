@@ -12,7 +12,20 @@
 
 namespace a3::rigs {
 
-EpisodeRecorderNode::EpisodeRecorderNode(agent::Mission mission) : tracker_(std::move(mission)) {}
+EpisodeRecorderNode::EpisodeRecorderNode(agent::Mission mission, common::VehicleId vehicle)
+    : vehicle_(vehicle), tracker_(std::move(mission)) {}
+
+std::optional<common::NodePorts> EpisodeRecorderNode::ports() const {
+  namespace ch = common::channels;
+  return common::NodePorts()
+      .subscribes(ch::kEpisode)
+      .listens(ch::kNodeStats)  // real time: the runtimes publish them
+      .subscribes(ch::kSafety.of(vehicle_))
+      .subscribes(ch::kLinkRecord.of(vehicle_))
+      .subscribes(ch::kState.of(vehicle_))
+      .subscribes(ch::kFcStatus.of(vehicle_))
+      .subscribes(ch::kPayload.of(vehicle_));
+}
 
 RecordedEpisode EpisodeRecorderNode::snapshot() const {
   std::lock_guard<std::mutex> lock(mutex_);
@@ -46,11 +59,11 @@ void EpisodeRecorderNode::start(common::Executor&, common::Bus& bus) {
     if (n.final && !m.is_final) return;  // a late periodic report after the totals
     n = {common::node_stats_json(m), m.wall_utime_us, m.utime_us, m.pid, m.is_final != 0};
   });
-  bus.subscribe<a3lcm::safety_event_t>(ch::kSafety, [this](const a3lcm::safety_event_t& e, int64_t) {
+  bus.subscribe<a3lcm::safety_event_t>(ch::kSafety.of(vehicle_), [this](const a3lcm::safety_event_t& e, int64_t) {
     std::lock_guard<std::mutex> lock(mutex_);
     rec_.safety.push_back(e);
   });
-  bus.subscribe<a3lcm::link_record_t>(ch::kLinkRecord, [this](const a3lcm::link_record_t& r, int64_t) {
+  bus.subscribe<a3lcm::link_record_t>(ch::kLinkRecord.of(vehicle_), [this](const a3lcm::link_record_t& r, int64_t) {
     std::lock_guard<std::mutex> lock(mutex_);
     LinkDirectionStats& d = r.direction == "up" ? rec_.up : rec_.down;
     ++d.messages;
@@ -67,7 +80,7 @@ void EpisodeRecorderNode::start(common::Executor&, common::Bus& bus) {
     }
     rec_.last_slice = r.slice;
   });
-  bus.subscribe<a3lcm::vehicle_state_t>(ch::kState, [this](const a3lcm::vehicle_state_t& s, int64_t) {
+  bus.subscribe<a3lcm::vehicle_state_t>(ch::kState.of(vehicle_), [this](const a3lcm::vehicle_state_t& s, int64_t) {
     std::lock_guard<std::mutex> lock(mutex_);
     tracker_.on_state(s);
     const double t = s.utime_us * 1e-6;
@@ -88,7 +101,7 @@ void EpisodeRecorderNode::start(common::Executor&, common::Bus& bus) {
     rec_.have_state = true;
     ++rec_.states;
   });
-  bus.subscribe<a3lcm::fc_status_t>(ch::kFcStatus, [this](const a3lcm::fc_status_t& s, int64_t) {
+  bus.subscribe<a3lcm::fc_status_t>(ch::kFcStatus.of(vehicle_), [this](const a3lcm::fc_status_t& s, int64_t) {
     std::lock_guard<std::mutex> lock(mutex_);
     tracker_.on_fc_status(s);
     static constexpr const char* kModes[] = {"disarmed", "takeoff", "hold", "goto", "land", "return_home", "emergency"};
@@ -98,7 +111,7 @@ void EpisodeRecorderNode::start(common::Executor&, common::Bus& bus) {
     if (s.failsafe > 0 && s.failsafe <= 4 && s.failsafe != rec_.last_fc.failsafe) rec_.fc_failsafes.push_back(kFailsafes[s.failsafe]);
     rec_.last_fc = s;
   });
-  bus.subscribe<a3lcm::payload_event_t>(ch::kPayload, [this](const a3lcm::payload_event_t& e, int64_t) {
+  bus.subscribe<a3lcm::payload_event_t>(ch::kPayload.of(vehicle_), [this](const a3lcm::payload_event_t& e, int64_t) {
     std::lock_guard<std::mutex> lock(mutex_);
     tracker_.on_payload(e);
   });

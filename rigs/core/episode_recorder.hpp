@@ -18,6 +18,7 @@
 #include "a3lcm/safety_event_t.hpp"
 #include "a3lcm/vehicle_state_t.hpp"
 #include "agent/mission/mission_tracker.hpp"
+#include "common/channels.hpp"
 #include "common/node.hpp"
 
 namespace a3::rigs {
@@ -62,15 +63,19 @@ struct RecordedEpisode {
 
 class EpisodeRecorderNode final : public common::Node {
  public:
-  explicit EpisodeRecorderNode(agent::Mission mission);
+  explicit EpisodeRecorderNode(agent::Mission mission, common::VehicleId vehicle = 0);
   std::string name() const override { return "recorder"; }
   void start(common::Executor& executor, common::Bus& bus) override;
+  // Subscribes A3_EPISODE, A3_NODE_STATS and the vehicle's A3_SAFETY, A3_LINK_RECORD, A3_STATE,
+  // A3_FC_STATUS and A3_PAYLOAD.
+  std::optional<common::NodePorts> ports() const override;
   RecordedEpisode snapshot() const;
   // Calls fn with the episode so far (without its objectives, which snapshot() adds) under the
   // recorder's lock, without copying it. fn must not call the recorder.
   void inspect(const std::function<void(const RecordedEpisode&)>& fn) const;
 
  private:
+  common::VehicleId vehicle_ = 0;
   mutable std::mutex mutex_;
   RecordedEpisode rec_;
   agent::MissionTracker tracker_;

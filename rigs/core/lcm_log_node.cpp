@@ -13,17 +13,22 @@
 
 namespace a3::rigs {
 
-const std::vector<std::string>& rig_channels() {
-  namespace ch = common::channels;
-  static const std::vector<std::string> kChannels = {
-      ch::kState,      ch::kActuators,  ch::kFcCommand,   ch::kFcStatus,   ch::kNet,
-      ch::kLinkUpTx,   ch::kLinkUpRx,   ch::kLinkDownTx,  ch::kLinkDownRx, ch::kLinkRecord,
-      ch::kEdgeRequest, ch::kEdgeReply, ch::kSliceRequest, ch::kSliceReply, ch::kPayload,
-      ch::kTraffic,    ch::kEpisode,    ch::kSafety,      ch::kClock};
-  return kChannels;
+std::vector<std::string> logged_channels(common::VehicleId vehicles) {
+  std::vector<std::string> names;
+  for (common::VehicleId v = 0; v < vehicles; ++v) {
+    for (const auto& c : common::channels::declared_channels(v)) {
+      // The clock's answers travel on a bus of their own; the statistics are in the episode.
+      if (c.per_vehicle || v == 0) {
+        if (c.name != common::channels::kClockAck.name && c.name != common::channels::kNodeStats.name) {
+          names.push_back(c.name);
+        }
+      }
+    }
+  }
+  return names;
 }
 
-LcmLogNode::LcmLogNode(const std::filesystem::path& path) : path_(path) {
+LcmLogNode::LcmLogNode(const std::filesystem::path& path, common::VehicleId vehicles) : path_(path), vehicles_(vehicles) {
   std::error_code ec;
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
   if (ec) throw common::OutputError(path.parent_path().string() + ": cannot create the folder: " + ec.message());
@@ -80,9 +85,19 @@ void LcmLogNode::write_event(const std::string& channel, const uint8_t* data, st
   events_.add();
 }
 
+std::optional<common::NodePorts> LcmLogNode::ports() const {
+  common::NodePorts ports;
+  for (common::VehicleId v = 0; v < vehicles_; ++v) {
+    for (const auto& c : common::channels::declared_channels(v)) {
+      ports.declare(c.name, c.message_type, common::Port::Direction::kSubscribe);
+    }
+  }
+  return ports;
+}
+
 void LcmLogNode::start(common::Executor& executor, common::Bus& bus) {
   executor_ = &executor;
-  for (const std::string& channel : rig_channels()) {
+  for (const std::string& channel : logged_channels(vehicles_)) {
     bus.subscribe_raw(channel, [this](const std::string& ch, const uint8_t* data, std::size_t size, int64_t) {
       write_event(ch, data, size);
     });

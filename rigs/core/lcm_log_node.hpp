@@ -14,20 +14,24 @@
 #include <string>
 #include <vector>
 
+#include "common/channels.hpp"
 #include "common/node.hpp"
 
 namespace a3::rigs {
 
-// Every channel in common/channels.hpp.
-const std::vector<std::string>& rig_channels();
+// Every channel in common/channels.hpp for vehicles 0..vehicles-1, but the clock's answers and
+// the node statistics.
+std::vector<std::string> logged_channels(common::VehicleId vehicles);
 
 class LcmLogNode final : public common::Node {
  public:
   // Throws common::OutputError ("<path>: <reason>") when the file cannot be created.
-  explicit LcmLogNode(const std::filesystem::path& path);
+  explicit LcmLogNode(const std::filesystem::path& path, common::VehicleId vehicles = 1);
   ~LcmLogNode() override;
   std::string name() const override { return "lcm_log"; }
   void start(common::Executor& executor, common::Bus& bus) override;
+  // Subscribes every logged channel.
+  std::optional<common::NodePorts> ports() const override;
   uint64_t events() const;
   // events (messages written to the log).
   const common::CounterSet& counters() const override { return counter_set_; }
@@ -42,6 +46,7 @@ class LcmLogNode final : public common::Node {
   void fail(int error_number);  // with mutex_ held
 
   std::filesystem::path path_;
+  common::VehicleId vehicles_ = 1;
   std::filesystem::path temporary_;
   mutable std::mutex mutex_;
   std::unique_ptr<lcm::LogFile> log_;

@@ -68,7 +68,7 @@ RigThreads::RigThreads(RigNodes& n, const RigConfigs& cfg, const RunOptions& o, 
                                                            lcm_url);
     if (common::LockstepPacer* pacer = th->pacer()) {
       th->bus().subscribe<a3lcm::actuator_cmd_t>(
-          common::channels::kActuators,
+          common::channels::kActuators.of(cfg.dynamics.vehicle),
           [pacer](const a3lcm::actuator_cmd_t& m, int64_t) { pacer->note_ack(m.utime_us); });
     }
     if (node == n.fc.get() && o.sync == Sync::kLockstep) n.fc->follow_sim_clock(th->stepped_clock());

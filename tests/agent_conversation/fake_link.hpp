@@ -26,7 +26,7 @@ class FakeLink final : public common::Node {
   void start(common::Executor& executor, common::Bus& bus) override {
     executor_ = &executor;
     bus_ = &bus;
-    bus.subscribe<a3lcm::link_message_t>(ch::kLinkUpTx, [this](const a3lcm::link_message_t& m, int64_t) { on_up(m); });
+    bus.subscribe<a3lcm::link_message_t>(ch::kLinkUpTx.of(0), [this](const a3lcm::link_message_t& m, int64_t) { on_up(m); });
     bus.subscribe<a3lcm::episode_event_t>(ch::kEpisode, [this](const a3lcm::episode_event_t& e, int64_t) {
       if (e.kind == "turn_end") published_turns.push_back(nlohmann::json::parse(e.detail_json));
     });
@@ -46,7 +46,7 @@ class FakeLink final : public common::Node {
     r.outcome = a3lcm::link_record_t::DELIVERED;
     r.delivery_utime_us = now + 20'000;
     r.slice = "URLLC";
-    bus_->publish(ch::kLinkRecord, r);
+    bus_->publish(ch::kLinkRecord.of(0), r);
     if (m.kind == "turn") ++turn_messages;
     if (m.kind != "mcp_call") return;
     std::string error;
@@ -54,7 +54,7 @@ class FakeLink final : public common::Node {
     ASSERT_TRUE(action) << error;
     executor_->schedule_after(50'000, [this, a = *action] {
       ObservationEnvelope o{a.turn, a.action_index, {{"tool", a.action.value("name", "")}, {"result", {{"status", "ok"}}}}};
-      bus_->publish(ch::kLinkDownRx, encode_observation(o, next_id_++, executor_->clock().now_us(), "tool_server"));
+      bus_->publish(ch::kLinkDownRx.of(0), encode_observation(o, next_id_++, executor_->clock().now_us(), "tool_server"));
     });
   }
 

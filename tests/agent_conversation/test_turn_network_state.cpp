@@ -38,9 +38,9 @@ class FakeLink final : public common::Node {
   void start(common::Executor& executor, common::Bus& bus) override {
     executor_ = &executor;
     bus_ = &bus;
-    bus.publish(ch::kNet, net("eMBB", 1.65, true));
-    executor.schedule_at(switch_us_, [this] { bus_->publish(ch::kNet, net("URLLC", 0.06, false)); });
-    bus.subscribe<a3lcm::link_message_t>(ch::kLinkUpTx, [this](const a3lcm::link_message_t& m, int64_t) { on_up(m); });
+    bus.publish(ch::kNet.of(0), net("eMBB", 1.65, true));
+    executor.schedule_at(switch_us_, [this] { bus_->publish(ch::kNet.of(0), net("URLLC", 0.06, false)); });
+    bus.subscribe<a3lcm::link_message_t>(ch::kLinkUpTx.of(0), [this](const a3lcm::link_message_t& m, int64_t) { on_up(m); });
   }
 
  private:
@@ -64,14 +64,14 @@ class FakeLink final : public common::Node {
     r.net_throughput_mbps = n.throughput_mbps;
     r.net_edge_load = n.edge_load;
     r.net_degraded = n.degraded;
-    bus_->publish(ch::kLinkRecord, r);
+    bus_->publish(ch::kLinkRecord.of(0), r);
     if (m.kind != "mcp_call") return;
     std::string error;
     const auto action = decode_action(m, &error);
     ASSERT_TRUE(action) << error;
     executor_->schedule_after(30'000, [this, a = *action] {
       ObservationEnvelope o{a.turn, a.action_index, {{"tool", a.action.value("name", "")}, {"result", {{"status", "ok"}}}}};
-      bus_->publish(ch::kLinkDownRx, encode_observation(o, next_id_++, executor_->clock().now_us(), "tool_server"));
+      bus_->publish(ch::kLinkDownRx.of(0), encode_observation(o, next_id_++, executor_->clock().now_us(), "tool_server"));
     });
   }
 
@@ -133,7 +133,7 @@ TEST(TurnNetworkState, WithoutALinkRecordTheTurnKeepsTheStateLastHeard) {
   config.observation_timeout_s = 3.0;
   struct NetOnly final : common::Node {
     std::string name() const override { return "net_only"; }
-    void start(common::Executor&, common::Bus& bus) override { bus.publish(ch::kNet, net("mMTC", 0.5, false)); }
+    void start(common::Executor&, common::Bus& bus) override { bus.publish(ch::kNet.of(0), net("mMTC", 0.5, false)); }
   } net_only;
   ConversationNode conversation(config, std::make_unique<SlowAgent>());
   rt.add(conversation);  // subscribed before the state is published

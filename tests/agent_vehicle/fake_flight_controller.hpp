@@ -43,7 +43,7 @@ class FakeFlightController final : public common::Node {
   void start(common::Executor& executor, common::Bus& bus) override {
     executor_ = &executor;
     bus_ = &bus;
-    bus.subscribe<a3lcm::fc_command_t>(common::channels::kFcCommand,
+    bus.subscribe<a3lcm::fc_command_t>(common::channels::kFcCommand.of(0),
                                        [this](const a3lcm::fc_command_t& c, int64_t) { on_command(c); });
     executor.schedule_every(50'000, [this] { tick(0.05); });
     executor.schedule_every(100'000, [this] {
@@ -194,7 +194,7 @@ class FakeFlightController final : public common::Node {
     s.q_WB[3] = std::sin(yaw_deg_ * M_PI / 360.0);
     s.battery_pct = battery_;
     s.on_ground = !armed_ && p_.z() <= 0.05;
-    bus_->publish(common::channels::kState, s);
+    bus_->publish(common::channels::kState.of(0), s);
   }
 
   void publish_status() {
@@ -212,7 +212,7 @@ class FakeFlightController final : public common::Node {
     s.last_command_seq = seq_;
     s.last_command_accepted = accepted_;
     s.last_command_reason = reason_;
-    bus_->publish(common::channels::kFcStatus, s);
+    bus_->publish(common::channels::kFcStatus.of(0), s);
   }
 
   FakeFcConfig c_;

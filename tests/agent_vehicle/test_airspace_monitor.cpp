@@ -44,7 +44,7 @@ class Feeder final : public common::Node {
       s.q_WB[0] = 1.0;
       s.on_ground = flight_.on_ground(t);
       s.crashed = crash_at_s_ >= 0.0 && t >= crash_at_s_;
-      bus.publish(common::channels::kState, s);
+      bus.publish(common::channels::kState.of(0), s);
     });
     executor.schedule(0, 100'000, [this, &executor, &bus] {
       const double t = executor.clock().now_s();
@@ -82,7 +82,7 @@ Outcome run(Feeder& feeder, double end_s, AirspaceMonitorConfig config = {}) {
   AirspaceMonitorNode monitor(config);
   common::VirtualRuntime rt;
   Outcome out;
-  rt.bus().subscribe<a3lcm::safety_event_t>(common::channels::kSafety,
+  rt.bus().subscribe<a3lcm::safety_event_t>(common::channels::kSafety.of(0),
                                             [&out](const a3lcm::safety_event_t& e, int64_t) { out.events.push_back(e); });
   rt.add(monitor);
   rt.add(feeder);

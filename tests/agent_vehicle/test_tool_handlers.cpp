@@ -154,7 +154,7 @@ struct HandlerRig {
   }
   nlohmann::json call(const nlohmann::json& action) {
     const std::size_t before = probe.down.size();
-    rt.bus().publish(common::channels::kLinkUpRx,
+    rt.bus().publish(common::channels::kLinkUpRx.of(0),
                      encode_action(ActionEnvelope{turn, 0, action}, turn, rt.clock().now_us(), "agent"));
     ++turn;
     rt.run_until(rt.clock().now_us() + 100'000);

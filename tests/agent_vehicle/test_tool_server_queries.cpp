@@ -22,7 +22,7 @@ void publish_net(Rig& rig, const std::string& slice, double lat_ms, double loss_
   n.loss_pct = loss_pct;
   n.throughput_mbps = 95.5;
   n.edge_load = 0.375;
-  rig.rt.bus().publish(common::channels::kNet, n);
+  rig.rt.bus().publish(common::channels::kNet.of(0), n);
   rig.run_for(0.01);
 }
 

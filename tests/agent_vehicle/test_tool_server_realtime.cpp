@@ -25,7 +25,7 @@ void send_at(common::RealTimeNodeThread& thread, double t_s, int turn, const nlo
   common::Bus& bus = thread.bus();
   common::Executor& executor = thread.executor();
   executor.schedule_at(static_cast<int64_t>(t_s * 1e6), [&bus, &executor, turn, action] {
-    bus.publish(common::channels::kLinkUpRx, encode_action({turn, 0, action}, turn, executor.clock().now_us(), "agent"));
+    bus.publish(common::channels::kLinkUpRx.of(0), encode_action({turn, 0, action}, turn, executor.clock().now_us(), "agent"));
   });
 }
 

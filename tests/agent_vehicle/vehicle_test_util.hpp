@@ -83,20 +83,20 @@ class Probe final : public common::Node {
   std::string name() const override { return "probe"; }
   void start(common::Executor& executor, common::Bus& bus) override {
     namespace ch = common::channels;
-    bus.subscribe<a3lcm::link_message_t>(ch::kLinkDownTx, [this, &executor](const a3lcm::link_message_t& m, int64_t) {
+    bus.subscribe<a3lcm::link_message_t>(ch::kLinkDownTx.of(0), [this, &executor](const a3lcm::link_message_t& m, int64_t) {
       std::string error;
       auto o = decode_observation(m, &error);
       ASSERT_TRUE(o.has_value()) << error;
       down.push_back({executor.clock().now_s(), m, o->obs, o->turn, o->action_index});
     });
-    bus.subscribe<a3lcm::payload_event_t>(ch::kPayload,
+    bus.subscribe<a3lcm::payload_event_t>(ch::kPayload.of(0),
                                           [this](const a3lcm::payload_event_t& e, int64_t) { payload.push_back(e); });
-    bus.subscribe<a3lcm::safety_event_t>(ch::kSafety,
+    bus.subscribe<a3lcm::safety_event_t>(ch::kSafety.of(0),
                                          [this](const a3lcm::safety_event_t& e, int64_t) { safety.push_back(e); });
     bus.subscribe<a3lcm::traffic_state_t>(ch::kTraffic,
                                           [this](const a3lcm::traffic_state_t& t, int64_t) { traffic.push_back(t); });
     bus.subscribe<a3lcm::slice_switch_request_t>(
-        ch::kSliceRequest, [this, &executor, &bus](const a3lcm::slice_switch_request_t& r, int64_t) {
+        ch::kSliceRequest.of(0), [this, &executor, &bus](const a3lcm::slice_switch_request_t& r, int64_t) {
           slice_requests.push_back(r);
           if (responder_ == SliceResponder::kSilent) return;
           a3lcm::slice_switch_reply_t reply{};
@@ -108,7 +108,7 @@ class Probe final : public common::Node {
           reply.accepted = responder_ == SliceResponder::kAccept;
           reply.reason = reply.accepted ? (r.slice == "eMBB" ? "already active" : "") : "slice mMTC is not offered here";
           reply.effective_utime_us = reply.accepted ? reply.utime_us + (r.slice == "eMBB" ? 0 : 250'000) : -1;
-          bus.publish(ch::kSliceReply, reply);
+          bus.publish(ch::kSliceReply.of(0), reply);
         });
   }
   std::vector<Received> down;
@@ -139,7 +139,7 @@ class Rig {
     ActionEnvelope a{turn, index, action};
     send_raw(encode_action(a, next_id_++, rt.clock().now_us(), "agent"));
   }
-  void send_raw(a3lcm::link_message_t m) { rt.bus().publish(common::channels::kLinkUpRx, m); }
+  void send_raw(a3lcm::link_message_t m) { rt.bus().publish(common::channels::kLinkUpRx.of(0), m); }
 
   // Sends the action and runs until its observation comes (at most max_wait_s); returns it.
   nlohmann::json call(const nlohmann::json& action, double max_wait_s = 5.0) {

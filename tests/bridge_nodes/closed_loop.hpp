@@ -33,12 +33,12 @@ class GroundStation final : public common::Node {
   void start(common::Executor& executor, common::Bus& bus) override {
     executor_ = &executor;
     bus_ = &bus;
-    bus.subscribe<a3lcm::fc_status_t>(common::channels::kFcStatus, [this](const a3lcm::fc_status_t& s, int64_t) {
+    bus.subscribe<a3lcm::fc_status_t>(common::channels::kFcStatus.of(0), [this](const a3lcm::fc_status_t& s, int64_t) {
       statuses.push_back(s);
       max_failsafe_seen = std::max<int>(max_failsafe_seen, s.failsafe);
       if (on_status) on_status(s);
     });
-    bus.subscribe<a3lcm::vehicle_state_t>(common::channels::kState, [this](const a3lcm::vehicle_state_t& s, int64_t) {
+    bus.subscribe<a3lcm::vehicle_state_t>(common::channels::kState.of(0), [this](const a3lcm::vehicle_state_t& s, int64_t) {
       state = s;
       ++states;
       if (on_state) on_state(s);
@@ -82,7 +82,7 @@ class GroundStation final : public common::Node {
     c.target_W_m[2] = z;
     c.speed_limit_mps = speed_mps;
     c.yaw_deg = yaw_deg;
-    bus_->publish(common::channels::kFcCommand, c);
+    bus_->publish(common::channels::kFcCommand.of(0), c);
   }
 
   common::Executor* executor_ = nullptr;

@@ -42,7 +42,7 @@ class StatePublisher final : public common::Node {
   std::string name() const override { return "states"; }
   void start(common::Executor& executor, common::Bus& bus) override {
     executor.schedule(0, period_us_, [this, &executor, &bus] {
-      if (enabled) bus.publish(common::channels::kState, state_at_(executor.clock().now_us()));
+      if (enabled) bus.publish(common::channels::kState.of(0), state_at_(executor.clock().now_us()));
     });
   }
   bool enabled = true;
@@ -58,12 +58,12 @@ class LcmRecorder final : public common::Node {
   std::string name() const override { return "lcm-recorder"; }
   void start(common::Executor&, common::Bus& bus) override {
     bus_ = &bus;
-    bus.subscribe<a3lcm::actuator_cmd_t>(common::channels::kActuators,
+    bus.subscribe<a3lcm::actuator_cmd_t>(common::channels::kActuators.of(0),
                                          [this](const a3lcm::actuator_cmd_t& m, int64_t) { actuators.push_back(m); });
-    bus.subscribe<a3lcm::fc_status_t>(common::channels::kFcStatus,
+    bus.subscribe<a3lcm::fc_status_t>(common::channels::kFcStatus.of(0),
                                       [this](const a3lcm::fc_status_t& m, int64_t) { statuses.push_back(m); });
   }
-  void command(const a3lcm::fc_command_t& c) { bus_->publish(common::channels::kFcCommand, c); }
+  void command(const a3lcm::fc_command_t& c) { bus_->publish(common::channels::kFcCommand.of(0), c); }
   std::vector<a3lcm::actuator_cmd_t> actuators;
   std::vector<a3lcm::fc_status_t> statuses;
 

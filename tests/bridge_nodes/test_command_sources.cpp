@@ -36,7 +36,7 @@ struct SpoofedRig {
     rt.add(bridge);
     rt.add(fc);
     spoofer.start(rt.scheduler());
-    rt.bus().subscribe<a3lcm::safety_event_t>(common::channels::kSafety, [this](const a3lcm::safety_event_t& e, int64_t) {
+    rt.bus().subscribe<a3lcm::safety_event_t>(common::channels::kSafety.of(0), [this](const a3lcm::safety_event_t& e, int64_t) {
       safety.push_back(e);
     });
   }

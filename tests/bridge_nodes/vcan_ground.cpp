@@ -31,12 +31,12 @@ class Ground final : public a3::common::Node {
   void start(a3::common::Executor& executor, a3::common::Bus& bus) override {
     executor_ = &executor;
     bus_ = &bus;
-    bus.subscribe<fc_status_t>(a3::common::channels::kFcStatus, [this](const fc_status_t& s, int64_t) {
+    bus.subscribe<fc_status_t>(a3::common::channels::kFcStatus.of(0), [this](const fc_status_t& s, int64_t) {
       std::lock_guard<std::mutex> lock(mutex_);
       status_ = s;
       ++statuses_;
     });
-    bus.subscribe<vehicle_state_t>(a3::common::channels::kState, [this](const vehicle_state_t& s, int64_t) {
+    bus.subscribe<vehicle_state_t>(a3::common::channels::kState.of(0), [this](const vehicle_state_t& s, int64_t) {
       std::lock_guard<std::mutex> lock(mutex_);
       state_ = s;
       ++states_;
@@ -84,7 +84,7 @@ class Ground final : public a3::common::Node {
     c.target_W_m[2] = z;
     c.speed_limit_mps = speed;
     c.yaw_deg = std::nan("");
-    bus_->publish(a3::common::channels::kFcCommand, c);
+    bus_->publish(a3::common::channels::kFcCommand.of(0), c);
   }
 
   a3::common::Executor* executor_ = nullptr;

@@ -31,11 +31,11 @@ class StateRecorder final : public common::Node {
  public:
   std::string name() const override { return "recorder"; }
   void start(common::Executor&, common::Bus& bus) override {
-    bus.subscribe<vehicle_state_t>(common::channels::kState, [this](const vehicle_state_t& s, int64_t) {
+    bus.subscribe<vehicle_state_t>(common::channels::kState.of(0), [this](const vehicle_state_t& s, int64_t) {
       std::lock_guard<std::mutex> lock(mutex);
       states[s.utime_us] = s;
     });
-    bus.subscribe<a3lcm::safety_event_t>(common::channels::kSafety, [this](const a3lcm::safety_event_t& e, int64_t) {
+    bus.subscribe<a3lcm::safety_event_t>(common::channels::kSafety.of(0), [this](const a3lcm::safety_event_t& e, int64_t) {
       std::lock_guard<std::mutex> lock(mutex);
       safety.push_back(e);
     });
@@ -306,8 +306,8 @@ TEST(DynamicsBenchNodes, ALastStateRecorderTakesNoCommands) {
   a3lcm::actuator_cmd_t cmd{};
   vehicle_state_t state{};
   state.utime_us = 42;
-  rt.bus().publish(common::channels::kActuators, cmd);
-  rt.bus().publish(common::channels::kState, state);
+  rt.bus().publish(common::channels::kActuators.of(0), cmd);
+  rt.bus().publish(common::channels::kState.of(0), state);
   rt.run_until(0);
   EXPECT_EQ(rt.scheduler().events_run(), 1u);  // the state's delivery
   EXPECT_EQ(recorder.state_count(), 1u);

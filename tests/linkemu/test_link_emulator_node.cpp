@@ -178,7 +178,7 @@ Schedule busy_run(uint64_t seed) {
       r.request_id = k;
       r.requester = "test";
       r.slice = slices[k % 3];
-      bus.publish(common::channels::kSliceRequest, r);
+      bus.publish(common::channels::kSliceRequest.of(0), r);
     });
   }
   run(node, client, 320 * kSecond);
@@ -220,7 +220,7 @@ TEST(LinkEmulatorNode, TraceReplayPublishesTheTracesNtAtItsTimes) {
     a3lcm::slice_switch_request_t r{};
     r.utime_us = ex.clock().now_us();
     r.slice = "URLLC";
-    bus.publish(common::channels::kSliceRequest, r);
+    bus.publish(common::channels::kSliceRequest.of(0), r);
   });
   run(node, client, 20 * kSecond);
 
@@ -291,7 +291,7 @@ void request_slice(ClientNode& client, int64_t t_us, const std::string& slice, i
     r.request_id = id;
     r.requester = "tool_server";
     r.slice = slice;
-    bus.publish(common::channels::kSliceRequest, r);
+    bus.publish(common::channels::kSliceRequest.of(0), r);
   });
 }
 
@@ -360,7 +360,7 @@ TEST(LinkEmulatorNode, EdgeComputeDelayScalesWithTheEdgeLoad) {
       r.request_id = id;
       r.requester = "agent";
       r.work_ms = work_ms;
-      bus.publish(common::channels::kEdgeRequest, r);
+      bus.publish(common::channels::kEdgeRequest.of(0), r);
     });
   };
   ask(5 * kSecond, 1000.0, 1);
@@ -387,7 +387,7 @@ TEST(LinkEmulatorNode, BadInputIsDroppedWithACountedRecordedReasonAndTheLinkGoes
   ClientNode client;
   client.at(kSecond, [](common::Executor&, common::Bus& bus) {
     const uint8_t garbage[] = {0xde, 0xad, 0xbe, 0xef, 1, 2, 3};
-    bus.publish_raw(common::channels::kLinkUpTx, garbage, sizeof garbage);
+    bus.publish_raw(common::channels::kLinkUpTx.of(0).name, garbage, sizeof garbage);
   });
   client.send_at(kSecond + 1, true, make_message(1, "agent", 100, -5));
   client.send_at(kSecond + 2, true, make_message(2, "agent", 100, 10));
