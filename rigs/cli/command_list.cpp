@@ -17,7 +17,7 @@ const std::map<std::string, std::string>& command_groups() {
       {"run", "Fly"},       {"mcp", "Fly"},       {"sweep", "Fly"},    {"node", "Fly"},
       {"serve-model", "Serve"},
       {"score", "Evaluate"}, {"validate", "Evaluate"}, {"report", "Evaluate"}, {"generate", "Evaluate"},
-      {"scenario", "Tools"}, {"can", "Tools"}, {"help", "Tools"}};
+      {"scenario", "Tools"}, {"can", "Tools"}, {"topology", "Tools"}, {"help", "Tools"}};
   return kGroups;
 }
 

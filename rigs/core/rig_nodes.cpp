@@ -21,6 +21,12 @@ const std::vector<RigPart>& rig_parts_outside_ground() {
   return parts;
 }
 
+std::vector<RigPart> all_rig_parts() {
+  std::vector<RigPart> parts = rig_parts_outside_ground();
+  parts.insert(parts.begin(), RigPart::kGround);
+  return parts;
+}
+
 std::string to_string(RigPart part) {
   switch (part) {
     case RigPart::kGround: return "ground";

@@ -30,6 +30,7 @@ namespace a3::rigs {
 // The parts a rig is made of, as `a3rig node part` names them.
 enum class RigPart { kGround, kDynamics, kBridge, kFc, kLinkemu, kVehicle };
 const std::vector<RigPart>& rig_parts_outside_ground();  // dynamics, bridge, fc, linkemu, vehicle
+std::vector<RigPart> all_rig_parts();                     // the ground first, then those
 std::string to_string(RigPart part);
 RigPart parse_rig_part(const std::string& name);  // throws std::invalid_argument listing the names
 

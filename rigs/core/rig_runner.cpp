@@ -147,12 +147,6 @@ RunResult finish(const Scenario& s, const RunOptions& o, RigNodes& n, const RunE
   return result;
 }
 
-std::vector<RigPart> all_parts() {
-  std::vector<RigPart> parts = rig_parts_outside_ground();
-  parts.insert(parts.begin(), RigPart::kGround);
-  return parts;
-}
-
 // A run's own LCM port on the usual multicast group (the loopback route covers the group, any
 // port), so that two runs on one host never hear each other; an explicit URL or
 // $LCM_DEFAULT_URL wins. An even port: the next one carries the lockstep answers.
@@ -196,7 +190,7 @@ RunResult run_virtual(const Scenario& s, const RunOptions& o, const RigConfigs& 
   bridge::VirtualCanBus can(rt.scheduler());
   auto can_bridge = can.attach("bridge");
   auto can_fc = can.attach("fc");
-  RigNodes n = make_rig_nodes(all_parts(), cfg, o, s, {can_bridge.get(), can_fc.get()}, false);
+  RigNodes n = make_rig_nodes(all_rig_parts(), cfg, o, s, {can_bridge.get(), can_fc.get()}, false);
   for (common::Node* node : n.in_start_order()) rt.add(*node);
   Reporter report{progress};
   std::string status;
@@ -282,7 +276,7 @@ RunResult run_real(const Scenario& s, const RunOptions& o, const RigConfigs& cfg
   const bool agent_in_thread = o.agent == "llm" || o.agent == "mcp";  // decide() blocks on a wall clock
   std::unique_ptr<bridge::CanBus> can_bridge, can_fc;
   std::unique_ptr<RigProcesses> children;
-  std::vector<RigPart> in_process = all_parts();
+  std::vector<RigPart> in_process = all_rig_parts();
   // Declared before the nodes: a node's destructor cancels its timers on its thread's executor.
   std::unique_ptr<RigThreads> threads;
   if (o.processes) {

@@ -135,6 +135,19 @@ TEST(CliUsage, HelpCommandPrintsACommandsLongTextsWithoutItsOptions) {
   EXPECT_NE(o.output.find("sweep"), std::string::npos) << o.output;
 }
 
+TEST(CliUsage, TopologyPrintsTheRigsGraphAsTextAndDot) {
+  Outcome o = a3rig("topology --scenario parcel-delivery");
+  EXPECT_EQ(o.exit_status, 0) << o.output;
+  EXPECT_NE(o.output.find("A3_FC_CMD  a3lcm.fc_command_t\n    published by  tool_server\n    subscribed by bridge"),
+            std::string::npos)
+      << o.output;
+  o = a3rig("topology --runtime virtual --format dot");
+  EXPECT_EQ(o.exit_status, 0) << o.output;
+  EXPECT_EQ(o.output.rfind("digraph a3rig {", 0), 0u) << o.output;
+  o = a3rig("topology --format svg");
+  EXPECT_EQ(o.exit_status, 2) << o.output;
+}
+
 TEST(CliUsage, TheProgramsHelpFitsAScreenAndListsEveryCommandOnce) {
   const Outcome o = a3rig("--help");
   EXPECT_EQ(o.exit_status, 0) << o.output;
@@ -150,7 +163,7 @@ TEST(CliUsage, TheProgramsHelpFitsAScreenAndListsEveryCommandOnce) {
   }
   EXPECT_EQ(o.output.find("Other:"), std::string::npos) << "every command has its group: " << o.output;
   for (const std::string command : {"run", "mcp", "sweep", "serve-model", "score", "validate", "report", "generate",
-                                    "scenario", "can", "help"}) {
+                                    "scenario", "can", "topology", "help"}) {
     EXPECT_NE(o.output.find("\n  " + command + " "), std::string::npos) << command << "\n" << o.output;
   }
 }
