@@ -17,14 +17,7 @@ std::string string_field(od::object& object, const char* key) {
   return std::string(value);
 }
 
-}  // namespace
-
-std::optional<RigEpisodeLabel> read_rig_episode_label(const std::filesystem::path& path) {
-  std::error_code ec;
-  const auto size = std::filesystem::file_size(path, ec);
-  if (ec || size > kMaxLabelFileBytes || !std::filesystem::is_regular_file(path, ec)) return std::nullopt;
-  simdjson::padded_string text;
-  if (simdjson::padded_string::load(path.string()).get(text) != simdjson::SUCCESS) return std::nullopt;
+std::optional<RigEpisodeLabel> label_of(const simdjson::padded_string& text) {
   od::parser parser;
   od::document document;
   if (parser.iterate(text).get(document) != simdjson::SUCCESS) return std::nullopt;
@@ -41,6 +34,21 @@ std::optional<RigEpisodeLabel> read_rig_episode_label(const std::filesystem::pat
   if (!think_time.empty() && think_time != "0") label.model += ", think " + think_time;
   if (!slice.empty()) label.model += ", " + slice;
   return label;
+}
+
+}  // namespace
+
+std::optional<RigEpisodeLabel> read_rig_episode_label(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec || size > kMaxLabelFileBytes || !std::filesystem::is_regular_file(path, ec)) return std::nullopt;
+  simdjson::padded_string text;
+  if (simdjson::padded_string::load(path.string()).get(text) != simdjson::SUCCESS) return std::nullopt;
+  return label_of(text);
+}
+
+std::optional<RigEpisodeLabel> rig_episode_label_from_text(std::string_view text) {
+  return label_of(simdjson::padded_string(text));
 }
 
 }  // namespace a3::eval

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace a3::eval {
 
@@ -24,5 +25,7 @@ struct RigEpisodeLabel {
 // nullopt when the file cannot be read or lacks `_meta.model` or `_rig.scenario` (not a3rig's);
 // the scorer still checks the file and reports what is wrong with it.
 std::optional<RigEpisodeLabel> read_rig_episode_label(const std::filesystem::path& path);
+// The same from an episode's text (fuzz/episode.cpp runs it on every input).
+std::optional<RigEpisodeLabel> rig_episode_label_from_text(std::string_view text);
 
 }  // namespace a3::eval

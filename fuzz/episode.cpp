@@ -3,7 +3,7 @@
 // under both scoring profiles. Invariants: every pillar and α³ lie in [0, 1]; the compiled
 // schema (what scoring validates with) and valijson give the same verdict on every document;
 // the fast parser (simdjson) and the reference parser build the same document from every text
-// simdjson accepts.
+// simdjson accepts; the a3rig episode label (rig_episode_label) is read or refused, never crashes.
 #include <cstring>
 #include <string>
 #include <string_view>
@@ -15,6 +15,7 @@
 #include "eval/json_shape.hpp"
 #include "eval/parser_agreement.hpp"
 #include "eval/pillars.hpp"
+#include "eval/rig_episode_label.hpp"
 #include "fuzz/fuzz_target.hpp"
 
 namespace {
@@ -64,4 +65,8 @@ A3_FUZZ_TARGET(episode) {
   if (check.status == a3::eval::EpisodeStatus::kValid) score_both_profiles(check.facts);
   a3::fuzz::require(check.status != a3::eval::EpisodeStatus::kInvalid || !check.violations.empty(),
                     "an invalid episode without a reason");
+  // How `a3rig score` names a3rig's own episode.json: a label has both its parts, or none is given.
+  if (const auto label = a3::eval::rig_episode_label_from_text(text)) {
+    a3::fuzz::require(!label->model.empty() && !label->scenario.empty(), "a rig episode label with an empty part");
+  }
 }

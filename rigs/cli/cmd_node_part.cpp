@@ -95,7 +95,7 @@ A3_REGISTER_COMMAND("90-node-part", [](CLI::App& app) {
   cmd->add_option("--rtf", o.real_time_factor, "simulated seconds per wall second (default 1)")->check(a3::rigs::positive());
   cmd->add_option("--lcm-url", o.lcm_url, "LCM URL shared by every part of the run")->required();
   cmd->add_option("--sync", o.sync, "lockstep (default) or free, as for `a3rig run`")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, Sync>{{"lockstep", Sync::kLockstep}, {"free", Sync::kFree}}));
+      ->transform(CLI::CheckedTransformer(sync_by_name()));
   cmd->add_option("--can", o.can, "CAN bus between bridge and fc: userspace:NAME, vcan0, can0, ...");
   cmd->add_option("--integrator", o.integrator, "rk4 (default: fixed-step Runge-Kutta), cvode (adaptive, the accuracy reference) or ode")->check(CLI::IsMember({"rk4", "cvode", "ode"}));
   cmd->add_option("--dynamics-rate-hz", o.dynamics_rate_hz, "dynamics step rate (default 250)")->check(a3::rigs::positive());

@@ -48,7 +48,7 @@ A3_REGISTER_COMMAND("80-topology", [](CLI::App& app) {
   cmd->add_option("--runtime", args->runtime, "real (default: with the runtimes' own channels) or virtual")
       ->check(CLI::IsMember({"real", "virtual"}));
   cmd->add_option("--sync", args->sync, "real time: lockstep (default) or free")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, Sync>{{"lockstep", Sync::kLockstep}, {"free", Sync::kFree}}))
+      ->transform(CLI::CheckedTransformer(sync_by_name()))
       ->option_text("lockstep|free");
   cmd->add_option("--format", args->format, "text (default) or dot")->check(CLI::IsMember({"text", "dot"}));
   cmd->callback([args] { command_exit_status() = print_topology(*args); });

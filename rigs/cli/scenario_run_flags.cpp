@@ -66,7 +66,7 @@ void add_scenario_run_flags(CLI::App& cmd, ScenarioRunFlags& f) {
   cmd.add_option("--sync", o.sync,
                  "real time: lockstep (default: dynamics, bridge and flight controller advance together, paced by "
                  "the wall clock at --rtf) or free (every node on the wall clock; for a real flight controller)")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, Sync>{{"lockstep", Sync::kLockstep}, {"free", Sync::kFree}}))
+      ->transform(CLI::CheckedTransformer(sync_by_name()))
       ->option_text("lockstep|free");
   cmd.add_option("--lcm-url", o.lcm_url,
                  "real time: LCM URL (default $LCM_DEFAULT_URL, else a port of its own on udpm://239.255.76.67, "

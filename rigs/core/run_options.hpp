@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -18,6 +19,11 @@ enum class Runtime { kVirtual, kReal };
 // free-running on the wall clock (a real flight controller on a real bus). DESIGN.md "Time".
 enum class Sync { kLockstep, kFree };
 const char* to_string(Sync sync);
+// The --sync words: "lockstep", "free".
+inline const std::map<std::string, Sync>& sync_by_name() {
+  static const std::map<std::string, Sync> kNames = {{"lockstep", Sync::kLockstep}, {"free", Sync::kFree}};
+  return kNames;
+}
 
 struct RunOptions {
   std::string scenario = "survey-field";  // built-in name, file, or alphabench:<path>
