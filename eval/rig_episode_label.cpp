@@ -1,4 +1,6 @@
-// Who flew an a3rig episode, read on demand.
+// Who flew an a3rig episode, read with simdjson's DOM parser: the whole text is validated
+// before any field is looked at, so a damaged file is refused as a whole (the on-demand
+// API leaves a document unusable after an error inside it, which the episode fuzz target found).
 #include "eval/rig_episode_label.hpp"
 
 #include <simdjson.h>
@@ -6,28 +8,26 @@
 namespace a3::eval {
 namespace {
 
-namespace od = simdjson::ondemand;
-
 // Larger files are not a3rig's (its episodes are a few MB at most): not read, the check says why.
 constexpr std::size_t kMaxLabelFileBytes = 64u << 20;
 
-std::string string_field(od::object& object, const char* key) {
+std::string string_field(const simdjson::dom::object& object, const char* key) {
   std::string_view value;
-  if (object.find_field_unordered(key).get_string().get(value) != simdjson::SUCCESS) return "";
+  if (object.at_key(key).get_string().get(value) != simdjson::SUCCESS) return "";
   return std::string(value);
 }
 
 std::optional<RigEpisodeLabel> label_of(const simdjson::padded_string& text) {
-  od::parser parser;
-  od::document document;
-  if (parser.iterate(text).get(document) != simdjson::SUCCESS) return std::nullopt;
-  od::object meta, rig;
-  if (document.find_field_unordered("_meta").get_object().get(meta) != simdjson::SUCCESS) return std::nullopt;
+  simdjson::dom::parser parser;
+  simdjson::dom::element document;
+  if (parser.parse(text).get(document) != simdjson::SUCCESS) return std::nullopt;
+  simdjson::dom::object meta, rig;
+  if (document["_meta"].get_object().get(meta) != simdjson::SUCCESS) return std::nullopt;
+  if (document["_rig"].get_object().get(rig) != simdjson::SUCCESS) return std::nullopt;
   RigEpisodeLabel label;
   label.model = string_field(meta, "model");
-  if (document.find_field_unordered("_rig").get_object().get(rig) != simdjson::SUCCESS) return std::nullopt;
   label.scenario = string_field(rig, "scenario");
-  if (rig.find_field_unordered("seed").get_int64().get(label.seed) != simdjson::SUCCESS) label.seed = 0;
+  if (rig["seed"].get_int64().get(label.seed) != simdjson::SUCCESS) label.seed = 0;
   const std::string think_time = string_field(rig, "think_time");
   const std::string slice = string_field(rig, "slice");
   if (label.model.empty() || label.scenario.empty()) return std::nullopt;

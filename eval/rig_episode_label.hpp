@@ -1,7 +1,7 @@
 // a3rig's own episode files (`a3rig run`'s RUN/episode.json, a sweep's
 // cells/<scenario>/<agent>/think-<t>/<slice>/seed-<n>/episode.json) say who flew them inside the
 // file, not in their path: `_meta.model`, and in `_rig` the scenario, seed, think time and slice.
-// This reads just those fields (simdjson on demand: the dialogue is skipped, not parsed), so a
+// This reads just those fields (simdjson DOM: validated whole, then looked up by key), so a
 // run or sweep folder scores as one leaderboard row per agent configuration.
 #pragma once
 
