@@ -5,7 +5,7 @@
 #   <prefix>/share/a3rig/                       scenarios, airframes, schemas, the default
 #                                               configuration files, the LCM definitions;
 #                                               shared/ here is where the installed a3rig looks
-#                                               for the α³-Bench corpus (rigs/core/shared_dir.cpp)
+#                                               for the α³-Bench corpus (rigs/scenario/shared_dir.cpp)
 #   <prefix>/share/java/a3lcm-types.jar         the Java LCM types (when javac was found)
 #   <prefix>/lib/python3/dist-packages/a3lcm/   the Python LCM types
 include(GNUInstallDirs)

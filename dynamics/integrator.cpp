@@ -87,10 +87,22 @@ void Integrator::settle_on_ground() {
 }
 
 IntegratorKind parse_integrator_kind(const std::string& name) {
-  if (name == "rk4") return IntegratorKind::kRk4;
-  if (name == "cvode") return IntegratorKind::kCvode;
-  if (name == "ode") return IntegratorKind::kOde;
+  for (IntegratorKind kind : kAllIntegrators) {
+    if (name == to_string(kind)) return kind;
+  }
   throw std::invalid_argument("unknown integrator '" + name + "' (known: rk4, cvode, ode)");
+}
+
+std::vector<std::string> integrator_names() {
+  std::vector<std::string> names;
+  for (IntegratorKind kind : kAllIntegrators) names.emplace_back(to_string(kind));
+  return names;
+}
+
+std::map<std::string, IntegratorKind> integrator_by_name() {
+  std::map<std::string, IntegratorKind> out;
+  for (IntegratorKind kind : kAllIntegrators) out.emplace(to_string(kind), kind);
+  return out;
 }
 
 const char* to_string(IntegratorKind kind) {

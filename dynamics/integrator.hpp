@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "dynamics/integrator_kind.hpp"
 #include "dynamics/quadrotor_model.hpp"
 #include "dynamics/wind_field.hpp"
 
@@ -73,11 +74,6 @@ class Integrator {
   bool battery_empty_ = false;
   std::vector<DynamicsEvent> events_;
 };
-
-enum class IntegratorKind { kRk4, kCvode, kOde };
-// "rk4" | "cvode" | "ode"; throws std::invalid_argument otherwise.
-IntegratorKind parse_integrator_kind(const std::string& name);
-const char* to_string(IntegratorKind kind);
 
 struct IntegratorOptions {
   // RK4: the longest step; 0 takes 0.4 x the motor's fastest time constant (rk4_integrator.hpp)

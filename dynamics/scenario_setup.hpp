@@ -1,5 +1,5 @@
 // Setting up the dynamics for a flight's start, from typed values (the rig parses the
-// scenario or episode: rigs/core/initial_state.hpp): the start pose (ENU metres, yaw in
+// scenario or episode: rigs/scenario/initial_state.hpp): the start pose (ENU metres, yaw in
 // degrees from east), the mean wind (speed and the direction it blows from, corpus
 // convention), the payloads carried and the battery's state of charge.
 #pragma once

@@ -2,7 +2,7 @@
 // airframe file (dynamics' own format: dynamics/airframes/*.json, the 3DR Iris, the default,
 // and a heavy-lift class for heavy payloads, both compiled in), then typed payloads add mass,
 // drag area and electrical load (the scenario's uav.payloads are parsed outside dynamics/, by
-// rigs/core/uav_payloads.hpp).
+// rigs/scenario/uav_payloads.hpp).
 #pragma once
 
 #include <nlohmann/json.hpp>

@@ -8,8 +8,8 @@
 #include "common/json_file.hpp"
 #include "common/json_text.hpp"
 #include "fuzz/fuzz_target.hpp"
-#include "rigs/core/scenario.hpp"
-#include "rigs/core/scenario_generator_knobs.hpp"
+#include "rigs/generator/scenario_generator_knobs.hpp"
+#include "rigs/scenario/scenario.hpp"
 
 namespace {
 

@@ -22,6 +22,18 @@ Slice parse_slice(std::string_view text) {
                               "' (expected URLLC, eMBB or mMTC)");
 }
 
+std::vector<std::string> slice_names() {
+  std::vector<std::string> names;
+  for (Slice slice : kAllSlices) names.emplace_back(to_string(slice));
+  return names;
+}
+
+std::map<std::string, Slice> slice_by_name() {
+  std::map<std::string, Slice> out;
+  for (Slice slice : kAllSlices) out.emplace(to_string(slice), slice);
+  return out;
+}
+
 bool is_hard(const NetworkState& state, const HardThresholds& t) {
   return state.lat_ms > t.lat_ms_above || state.loss_pct >= t.loss_pct_at_least ||
          state.throughput_mbps < t.throughput_mbps_below || state.edge_load > t.edge_load_above;

@@ -4,8 +4,10 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "a3lcm/network_state_t.hpp"
 
@@ -18,6 +20,9 @@ inline constexpr std::array<Slice, 3> kAllSlices = {Slice::kUrllc, Slice::kEmbb,
 const char* to_string(Slice slice);
 // Exact corpus spelling; throws std::invalid_argument naming the value and the choices.
 Slice parse_slice(std::string_view text);
+// The names, in kAllSlices order, and the names to slices (for command-line parsers).
+std::vector<std::string> slice_names();
+std::map<std::string, Slice> slice_by_name();
 inline std::size_t index_of(Slice slice) { return static_cast<std::size_t>(slice); }
 
 struct NetworkState {

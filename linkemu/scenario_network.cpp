@@ -13,7 +13,7 @@ using common::InputError;
 
 std::string initial_slice(const nlohmann::json& n, const std::string& wn) {
   const std::string slice = n.contains("initial_slice") ? common::require_string(n, "initial_slice", wn) : "eMBB";
-  if (slice != "URLLC" && slice != "eMBB" && slice != "mMTC") {
+  if (slice_by_name().count(slice) == 0) {
     throw InputError(wn + "/initial_slice: '" + slice + "' is not URLLC, eMBB or mMTC");
   }
   return slice;

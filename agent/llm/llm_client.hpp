@@ -119,7 +119,7 @@ struct LlmCallResult {
 // Whether a failed call is the endpoint's fault rather than the request's (never an interrupted
 // one): no HTTP answer
 // (unreachable, timeout, cut), 401, 403, 404, 408, 429 or 5xx (after the client's retries).
-// `a3rig generate` stops on it; `a3rig run` ends endpoint_failed on it (rigs/core/llm_run.hpp).
+// `a3rig generate` stops on it; `a3rig run` ends endpoint_failed on it (rigs/run/llm_run.hpp).
 bool is_endpoint_failure(const LlmCallResult& result);
 
 class LlmClient {

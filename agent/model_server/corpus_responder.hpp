@@ -3,7 +3,7 @@
 // paper's offline protocol runs without a network and reproduces the recorded leaderboard row.
 //
 // A request names its scenario and episode seed in the lines `a3rig generate` writes into its
-// user message (rigs/core/generate_prompt.hpp):
+// user message (rigs/generate/generate_prompt.hpp):
 //   scenario_id: sc-0013      the scenario number (else: the first JSON object of the user
 //                             messages, or its "initial_state", equal to a recorded initial_state)
 //   episode_seed: 42          the seed (absent: any recorded seed of the scenario)

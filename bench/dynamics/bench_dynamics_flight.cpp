@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
   double wind_mps = 5.0, wind_dir_deg = 240.0;
   uint64_t seed = 3;
   app.add_option("--csv", out_csv, "output CSV (default dynamics_flight.csv)");
-  app.add_option("--integrator", integrator, "rk4 (default), cvode or ode")->check(CLI::IsMember({"rk4", "cvode", "ode"}));
+  app.add_option("--integrator", integrator, "rk4 (default), cvode or ode")->check(CLI::IsMember(dynamics::integrator_names()));
   app.add_option("--wind-mps", wind_mps, "mean wind speed (default 5)")->check(CLI::NonNegativeNumber);
   app.add_option("--wind-dir-deg", wind_dir_deg, "direction the wind blows from (default 240)");
   app.add_option("--seed", seed, "turbulence seed (default 3)");

@@ -149,7 +149,7 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--rtf", rtf, "real-time factor (default 1)")->check(CLI::PositiveNumber);
   app.add_option("--burners", burners, "CPU-burning child processes (default 1)")->check(CLI::Range(0, 16));
-  app.add_option("--integrator", integrator, "rk4 (default), cvode or ode")->check(CLI::IsMember({"rk4", "cvode", "ode"}));
+  app.add_option("--integrator", integrator, "rk4 (default), cvode or ode")->check(CLI::IsMember(dynamics::integrator_names()));
   app.add_option("--lcm-url", url, "LCM URL (default: a port of its own, away from other runs)");
   app.add_option("--dump", dump, "write each step's lateness (us) and each state's arrival lateness to this CSV");
   app.add_option("--rt-priority", rt_priority,

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "bridge/fc/sensor_model.hpp"
+#include "bridge/fc/earth_model.hpp"
 #include "bridge/nodes/frames.hpp"
 
 namespace a3::bridge {

@@ -17,9 +17,9 @@
 #include "rigs/cli/command_registry.hpp"
 #include "rigs/cli/flag_checks.hpp"
 #include "rigs/cli/signal_stop.hpp"
-#include "rigs/core/generate_run.hpp"
-#include "rigs/core/generate_scenarios.hpp"
-#include "rigs/core/scenario.hpp"
+#include "rigs/generate/generate_run.hpp"
+#include "rigs/generate/generate_scenarios.hpp"
+#include "rigs/scenario/scenario.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -75,6 +75,29 @@ std::string label_problem(const std::string& label) {
   return "";
 }
 
+void print_progress(const GenerateProgress& p) {
+  const bool stub = p.outcome == GenerateProgress::Outcome::kFailureStub;
+  for (const auto& error : p.attempt_errors) {
+    std::fprintf(stderr, "  %s: %s\n", fs::path(p.file).filename().string().c_str(), error.c_str());
+  }
+  std::fprintf(stderr, "[%*zu/%zu] %s: %s, %d attempt%s, %.2f s, %lld tokens | elapsed %s, ETA %s\n",
+               static_cast<int>(std::to_string(p.to_do).size()), p.done, p.to_do,
+               fs::path(p.file).filename().string().c_str(), stub ? "FAILURE STUB" : "valid", p.attempts_used,
+               p.attempts_used == 1 ? "" : "s", p.gen_time_s, static_cast<long long>(p.total_tokens),
+               clock_text(p.elapsed_s).c_str(), clock_text(p.eta_s).c_str());
+}
+
+void print_summary(const GenerateRunSummary& summary) {
+  std::fprintf(stderr,
+               "a3rig generate: %zu planned: %zu kept (%zu valid, %zu failure stubs), %zu generated (%zu valid, %zu "
+               "failure stubs, %lld tokens)%s in %.1f s; %zu left\n",
+               summary.planned, summary.kept_valid + summary.kept_stubs, summary.kept_valid, summary.kept_stubs,
+               summary.generated_valid + summary.generated_stubs, summary.generated_valid, summary.generated_stubs,
+               static_cast<long long>(summary.total_tokens),
+               summary.replaced_invalid > 0 ? (", " + std::to_string(summary.replaced_invalid) + " invalid files replaced").c_str() : "",
+               summary.wall_s, summary.not_generated);
+}
+
 int run_generate_command(const GenerateArgs& args) {
   auto usage_error = [](const std::string& message) {
     std::fprintf(stderr, "a3rig generate: %s\n", message.c_str());
@@ -119,16 +142,7 @@ int run_generate_command(const GenerateArgs& args) {
                  options.output_dir.string().c_str());
   }
   auto on_episode = [quiet](const GenerateProgress& p) {
-    if (quiet) return;
-    const bool stub = p.outcome == GenerateProgress::Outcome::kFailureStub;
-    for (const auto& error : p.attempt_errors) {
-      std::fprintf(stderr, "  %s: %s\n", fs::path(p.file).filename().string().c_str(), error.c_str());
-    }
-    std::fprintf(stderr, "[%*zu/%zu] %s: %s, %d attempt%s, %.2f s, %lld tokens | elapsed %s, ETA %s\n",
-                 static_cast<int>(std::to_string(p.to_do).size()), p.done, p.to_do,
-                 fs::path(p.file).filename().string().c_str(), stub ? "FAILURE STUB" : "valid", p.attempts_used,
-                 p.attempts_used == 1 ? "" : "s", p.gen_time_s, static_cast<long long>(p.total_tokens),
-                 clock_text(p.elapsed_s).c_str(), clock_text(p.eta_s).c_str());
+    if (!quiet) print_progress(p);
   };
   install_stop_signals();
   GenerateRunSummary summary;
@@ -142,14 +156,7 @@ int run_generate_command(const GenerateArgs& args) {
   } catch (const std::invalid_argument& e) {
     return usage_error(e.what());
   }
-  std::fprintf(stderr,
-               "a3rig generate: %zu planned: %zu kept (%zu valid, %zu failure stubs), %zu generated (%zu valid, %zu "
-               "failure stubs, %lld tokens)%s in %.1f s; %zu left\n",
-               summary.planned, summary.kept_valid + summary.kept_stubs, summary.kept_valid, summary.kept_stubs,
-               summary.generated_valid + summary.generated_stubs, summary.generated_valid, summary.generated_stubs,
-               static_cast<long long>(summary.total_tokens),
-               summary.replaced_invalid > 0 ? (", " + std::to_string(summary.replaced_invalid) + " invalid files replaced").c_str() : "",
-               summary.wall_s, summary.not_generated);
+  print_summary(summary);
   if (!summary.stop_error.empty()) {
     std::fprintf(stderr, "a3rig generate: stopped: %s\na3rig generate: run the same command again to continue\n",
                  summary.stop_error.c_str());

@@ -18,10 +18,11 @@
 #include "rigs/cli/http_limit_flags.hpp"
 #include "rigs/cli/scenario_run_flags.hpp"
 #include "rigs/cli/signal_stop.hpp"
-#include "rigs/core/mcp_run.hpp"
-#include "rigs/core/run_outputs.hpp"
-#include "rigs/core/run_summary.hpp"
-#include "rigs/core/shared_dir.hpp"
+#include "rigs/generator/scenario_spec.hpp"
+#include "rigs/outputs/run_outputs.hpp"
+#include "rigs/outputs/run_summary.hpp"
+#include "rigs/run/mcp_run.hpp"
+#include "rigs/scenario/shared_dir.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -82,7 +83,7 @@ int serve(McpArgs& a) {
   a.flags.apply();
   RunOptions& o = a.flags.options;
   o.shared_dir = default_shared_dir();
-  const Scenario scenario = load_scenario(o.scenario, o.shared_dir);
+  const Scenario scenario = load_scenario_spec(o.scenario, o.shared_dir);
   check_output_space(scenario, o);  // before any session: a client never flies a run that cannot be written
   std::atomic<bool> stop{false};
   auto agent = make_mcp_agent(scenario, o, &stop);

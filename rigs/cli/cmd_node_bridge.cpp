@@ -12,13 +12,13 @@
 #include <thread>
 
 #include "bridge/can/can_bus_factory.hpp"
-#include "bridge/nodes/bridge_node.hpp"
+#include "bridge/sim/bridge_node.hpp"
 #include "common/runtime.hpp"
 #include "rigs/cli/command_registry.hpp"
 #include "rigs/cli/flag_checks.hpp"
 #include "rigs/cli/node_thread_loop.hpp"
 #include "rigs/cli/signal_stop.hpp"
-#include "rigs/fc_setup.hpp"
+#include "rigs/run/fc_setup.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -31,9 +31,7 @@ struct BridgeArgs {
   int fc_node_id = bridge::kDefaultFcNodeId;
   bridge::SensorRates rates;
   std::string lcm_url;
-  double rtf = 1.0;
-  double duration_s = 0.0;
-  double report_every_s = 5.0;
+  NodePacing pacing;
 };
 
 void report(const bridge::BridgeNode& node, const bridge::CanBus& can, double sim_s) {
@@ -50,7 +48,7 @@ int run_bridge(const BridgeArgs& args) {
   config.node_id = static_cast<uint8_t>(args.node_id);
   config.fc_node_id = static_cast<uint8_t>(args.fc_node_id);
   config.rates = args.rates;
-  const common::WallClock clock(args.rtf);
+  const common::WallClock clock(args.pacing.rtf);
   std::unique_ptr<bridge::CanBus> can = bridge::open_can_bus(args.can);
   bridge::BridgeNode node(*can, config);
   common::RealTimeNodeThread thread(node, clock, args.lcm_url);
@@ -60,8 +58,8 @@ int run_bridge(const BridgeArgs& args) {
                "baro %.0f Hz, mag %.0f Hz, battery %.0f Hz, seed %llu, real-time factor %g\n",
                args.node_id, can->name().c_str(), thread.bus().url().c_str(), args.rates.imu_hz, args.rates.gnss_hz,
                args.rates.baro_hz, args.rates.mag_hz, args.rates.battery_hz,
-               static_cast<unsigned long long>(args.seed), args.rtf);
-  const std::string failure = run_node_thread(thread, clock, args.duration_s, args.report_every_s,
+               static_cast<unsigned long long>(args.seed), args.pacing.rtf);
+  const std::string failure = run_node_thread(thread, clock, args.pacing.duration_s, args.pacing.report_every_s,
                                               [&](double sim_s) { report(node, *can, sim_s); });
   node.stop();
   if (!failure.empty()) {
@@ -100,22 +98,9 @@ A3_REGISTER_COMMAND("51-node-bridge", [](CLI::App& app) {
   cmd->add_option("--mag-rate-hz", args->rates.mag_hz, "magnetometer rate (default 50)")->check(a3::rigs::between(0.1, 1000.0));
   cmd->add_option("--battery-rate-hz", args->rates.battery_hz, "battery rate (default 5)")
       ->check(a3::rigs::between(0.1, 1000.0));
-  cmd->add_option("--lcm-url", args->lcm_url,
-                  "LCM URL (default: $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0)");
-  cmd->add_option("--rtf", args->rtf, "real-time factor: simulated seconds per wall second (default 1)")
-      ->check(a3::rigs::positive());
-  cmd->add_option("--duration-s", args->duration_s, "stop after this much simulated time")
-      ->check(a3::rigs::non_negative());
-  cmd->add_option("--report-every-s", args->report_every_s, "status line period on stderr, wall seconds (default 5)")
-      ->check(a3::rigs::positive());
-  cmd->callback([args] {
-    try {
-      command_exit_status() = run_bridge(*args);
-    } catch (const std::exception& e) {
-      std::cerr << "a3rig node bridge: " << e.what() << "\n";
-      command_exit_status() = 2;
-    }
-  });
+  add_lcm_url_flag(*cmd, args->lcm_url);
+  add_node_pacing_flags(*cmd, args->pacing);
+  cmd->callback([args] { command_exit_status() = run_bridge(*args); });
 });
 
 }  // namespace a3::rigs

@@ -15,10 +15,11 @@
 #include "dynamics/actuator_script_node.hpp"
 #include "dynamics/dynamics_node.hpp"
 #include "dynamics/scenario_setup.hpp"
-#include "rigs/core/initial_state.hpp"
 #include "rigs/cli/command_registry.hpp"
 #include "rigs/cli/flag_checks.hpp"
+#include "rigs/cli/node_thread_loop.hpp"
 #include "rigs/cli/signal_stop.hpp"
+#include "rigs/scenario/initial_state.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -29,16 +30,14 @@ struct DynamicsArgs {
   bool on_ground = false;
   std::string integrator = "rk4";
   double rate_hz = 100.0;
-  double rtf = 1.0;
   double command_timeout_s = 0.5;
   double wind_mps = -1.0;
   double wind_dir_deg = 0.0;
   bool no_turbulence = false;
   uint64_t seed = 1;
   std::string lcm_url;
-  double duration_s = 0.0;
   std::string demo;
-  double report_every_s = 5.0;
+  NodePacing pacing;
 };
 
 int run_dynamics(const DynamicsArgs& args) {
@@ -54,7 +53,7 @@ int run_dynamics(const DynamicsArgs& args) {
   }
   if (args.wind_mps >= 0.0) config.mean_wind_W_mps = dynamics::wind_from_report(args.wind_mps, args.wind_dir_deg);
 
-  const common::WallClock clock(args.rtf);
+  const common::WallClock clock(args.pacing.rtf);
   dynamics::DynamicsNode node(config);
   common::RealTimeNodeThread thread(node, clock, args.lcm_url);
   thread.bus().check_loopback();
@@ -72,7 +71,7 @@ int run_dynamics(const DynamicsArgs& args) {
   }
   std::fprintf(stderr,
                "a3rig node dynamics: %s, %s integrator, %.0f Hz on %s, real-time factor %g, LCM %s\n",
-               config.params.name.c_str(), args.integrator.c_str(), args.rate_hz, "A3_STATE", args.rtf,
+               config.params.name.c_str(), args.integrator.c_str(), args.rate_hz, "A3_STATE", args.pacing.rtf,
                thread.bus().url().c_str());
   install_stop_signals();
   thread.start();
@@ -86,7 +85,7 @@ int run_dynamics(const DynamicsArgs& args) {
     const double sim_s = clock.now_s();
     if (!thread.failure().empty()) break;
     const int64_t wall_ns = common::WallClock::monotonic_now_ns();
-    if ((wall_ns - wall_prev_ns) * 1e-9 >= args.report_every_s || (args.duration_s > 0 && sim_s >= args.duration_s)) {
+    if ((wall_ns - wall_prev_ns) * 1e-9 >= args.pacing.report_every_s || (args.pacing.duration_s > 0 && sim_s >= args.pacing.duration_s)) {
       const uint64_t steps = node.counters().get("steps");
       const double window_sim_s = (steps - steps0) / args.rate_hz;
       const double window_wall_s = (wall_ns - wall_prev_ns) * 1e-9;
@@ -96,7 +95,7 @@ int run_dynamics(const DynamicsArgs& args) {
       steps0 = steps;
       wall_prev_ns = wall_ns;
     }
-    if (args.duration_s > 0 && sim_s >= args.duration_s) break;
+    if (args.pacing.duration_s > 0 && sim_s >= args.pacing.duration_s) break;
   }
   if (demo_thread) demo_thread->stop_and_join();
   thread.stop_and_join();
@@ -124,10 +123,8 @@ A3_REGISTER_COMMAND("50-node-dynamics", [](CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_flag("--on-ground", args->on_ground, "start on the ground below the scenario's pose");
   cmd->add_option("--integrator", args->integrator, "rk4 (default: fixed-step Runge-Kutta), cvode (adaptive, the accuracy reference) or ode")
-      ->check(CLI::IsMember({"rk4", "cvode", "ode"}));
+      ->check(CLI::IsMember(dynamics::integrator_names()));
   cmd->add_option("--rate-hz", args->rate_hz, "state publish rate (default 100)")->check(a3::rigs::between(1.0, 10000.0));
-  cmd->add_option("--rtf", args->rtf, "real-time factor: simulated seconds per wall second (default 1)")
-      ->check(a3::rigs::positive());
   cmd->add_option("--command-timeout-s", args->command_timeout_s,
                   "spin the motors down after this long without a command (default 0.5)")
       ->check(a3::rigs::positive());
@@ -135,13 +132,10 @@ A3_REGISTER_COMMAND("50-node-dynamics", [](CLI::App& app) {
   cmd->add_option("--wind-dir-deg", args->wind_dir_deg, "direction the wind blows from, degrees from north");
   cmd->add_flag("--no-turbulence", args->no_turbulence, "mean wind only");
   cmd->add_option("--seed", args->seed, "seed of the turbulence (default 1)");
-  cmd->add_option("--lcm-url", args->lcm_url,
-                  "LCM URL (default: $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0)");
-  cmd->add_option("--duration-s", args->duration_s, "stop after this much simulated time")->check(a3::rigs::non_negative());
   cmd->add_option("--demo", args->demo, "also publish rotor commands: hover or climb (for a quick look)")
       ->check(CLI::IsMember({"hover", "climb"}));
-  cmd->add_option("--report-every-s", args->report_every_s, "status line period on stderr (default 5)")
-      ->check(a3::rigs::positive());
+  add_lcm_url_flag(*cmd, args->lcm_url);
+  add_node_pacing_flags(*cmd, args->pacing);
   cmd->callback([args] { command_exit_status() = run_dynamics(*args); });
 });
 

@@ -22,7 +22,7 @@
 #include "rigs/cli/flag_checks.hpp"
 #include "rigs/cli/node_thread_loop.hpp"
 #include "rigs/cli/signal_stop.hpp"
-#include "rigs/fc_setup.hpp"
+#include "rigs/run/fc_setup.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -36,9 +36,7 @@ struct FcArgs {
   int node_id = bridge::kDefaultFcNodeId;
   std::vector<int> command_sources{bridge::kDefaultBridgeNodeId};
   bool no_step_on_command = false;
-  double rtf = 1.0;
-  double duration_s = 0.0;
-  double report_every_s = 5.0;
+  NodePacing pacing;
 };
 
 bridge::FcNodeConfig fc_config_from(const FcArgs& args) {
@@ -75,7 +73,7 @@ void report(const bridge::FcNode& node, const bridge::CanBus& can, double sim_s)
 
 int run_fc(const FcArgs& args) {
   const bridge::FcNodeConfig config = fc_config_from(args);
-  const common::WallClock clock(args.rtf);
+  const common::WallClock clock(args.pacing.rtf);
   std::unique_ptr<bridge::CanBus> can = bridge::open_can_bus(args.can);
   bridge::FcNode node(*can, config);
   // The fc speaks only CAN; the node runtime's bus is an in-process LCM nobody else sees.
@@ -85,8 +83,8 @@ int run_fc(const FcArgs& args) {
                "%.1f m, commands from node(s) %s, real-time factor %g\n",
                args.node_id, can->name().c_str(), config.params.control_rate_hz, config.params.status_rate_hz,
                config.params.vehicle.mass_kg, config.home.latitude_deg, config.home.longitude_deg,
-               config.home.height_m, bridge::command_sources_text(config.command_sources).c_str(), args.rtf);
-  const std::string failure = run_node_thread(thread, clock, args.duration_s, args.report_every_s,
+               config.home.height_m, bridge::command_sources_text(config.command_sources).c_str(), args.pacing.rtf);
+  const std::string failure = run_node_thread(thread, clock, args.pacing.duration_s, args.pacing.report_every_s,
                                               [&](double sim_s) { report(node, *can, sim_s); });
   node.stop();
   if (!failure.empty()) {
@@ -136,20 +134,8 @@ A3_REGISTER_COMMAND("52-node-fc", [](CLI::App& app) {
       ->check(a3::rigs::between(1, 127));
   cmd->add_flag("--no-step-on-command", args->no_step_on_command,
                 "do not run a control step at once when a command is accepted (wait for the next tick)");
-  cmd->add_option("--rtf", args->rtf, "real-time factor: simulated seconds per wall second (default 1)")
-      ->check(a3::rigs::positive());
-  cmd->add_option("--duration-s", args->duration_s, "stop after this much simulated time")
-      ->check(a3::rigs::non_negative());
-  cmd->add_option("--report-every-s", args->report_every_s, "status line period on stderr, wall seconds (default 5)")
-      ->check(a3::rigs::positive());
-  cmd->callback([args] {
-    try {
-      command_exit_status() = run_fc(*args);
-    } catch (const std::exception& e) {
-      std::cerr << "a3rig node fc: " << e.what() << "\n";
-      command_exit_status() = 2;
-    }
-  });
+  add_node_pacing_flags(*cmd, args->pacing);
+  cmd->callback([args] { command_exit_status() = run_fc(*args); });
 });
 
 }  // namespace a3::rigs

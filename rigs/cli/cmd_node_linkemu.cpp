@@ -28,6 +28,7 @@
 #include "linkemu/slice_profile.hpp"
 #include "rigs/cli/command_registry.hpp"
 #include "rigs/cli/flag_checks.hpp"
+#include "rigs/cli/node_thread_loop.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -52,9 +53,8 @@ struct LinkemuArgs {
   bool no_record_channel = false;
   std::string channel_suffix;
   std::string lcm_url;
-  double real_time_factor = 1.0;
+  NodePacing pacing;  // --rtf, --duration-s (no status lines: --stats-every-s)
   int64_t clock_epoch_mono_ns = -1;
-  double duration_s = 0.0;
   double stats_every_s = 10.0;
   int rt_priority = 0;
   bool print_profiles = false;
@@ -144,7 +144,7 @@ int run_linkemu(const LinkemuArgs& args) {
   sigaddset(&stop_signals, SIGTERM);
   pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
 
-  const common::WallClock clock(args.real_time_factor, args.clock_epoch_mono_ns);
+  const common::WallClock clock(args.pacing.rtf, args.clock_epoch_mono_ns);
   linkemu::LinkEmulatorNode node(config, profiles);
   std::unique_ptr<linkemu::LinkRecordLog> log;
   if (!args.records.empty()) {
@@ -170,7 +170,7 @@ int run_linkemu(const LinkemuArgs& args) {
   }
   common::RealTimeNodeThread& thread = *node_thread;
 
-  const double wall_limit_s = args.duration_s > 0.0 ? args.duration_s / args.real_time_factor : 0.0;
+  const double wall_limit_s = args.pacing.duration_s > 0.0 ? args.pacing.duration_s / args.pacing.rtf : 0.0;
   const int64_t start_ns = common::WallClock::monotonic_now_ns();
   for (;;) {
     timespec wait{0, 200'000'000};
@@ -214,7 +214,7 @@ A3_REGISTER_COMMAND("50-node-linkemu", [](CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--seed", args->seed, "master seed of the network-state process and the per-message draws");
   cmd->add_option("--slice", args->slice, "initial slice: URLLC, eMBB (default) or mMTC")
-      ->check(CLI::IsMember({"URLLC", "eMBB", "mMTC"}));
+      ->check(CLI::IsMember(linkemu::slice_names()));
   cmd->add_option("--start-regime", args->start_regime,
                   "regime at start: stationary (default), normal or degraded")
       ->check(CLI::IsMember({"stationary", "normal", "degraded"}));
@@ -248,14 +248,10 @@ A3_REGISTER_COMMAND("50-node-linkemu", [](CLI::App& app) {
   cmd->add_flag("--no-record-channel", args->no_record_channel,
                 "do not publish link_record_t on A3_LINK_RECORD");
   cmd->add_option("--channel-suffix", args->channel_suffix, "append this to every channel name");
-  cmd->add_option("--lcm-url", args->lcm_url,
-                  "LCM URL (default: $LCM_DEFAULT_URL, else udpm://239.255.76.67:7667?ttl=0)");
-  cmd->add_option("--real-time-factor", args->real_time_factor, "simulated seconds per wall second (default 1)")
-      ->check(a3::rigs::positive());
+  add_lcm_url_flag(*cmd, args->lcm_url);
+  add_node_pacing_flags(*cmd, args->pacing, false);
   cmd->add_option("--clock-epoch-mono-ns", args->clock_epoch_mono_ns,
                   "CLOCK_MONOTONIC instant of simulated time 0, shared by every node of a run (default: now)");
-  cmd->add_option("--duration-s", args->duration_s, "stop after this much simulated time (default: run until stopped)")
-      ->check(a3::rigs::non_negative());
   cmd->add_option("--stats-every-s", args->stats_every_s, "log the counters this often (default 10; 0: never)")
       ->check(a3::rigs::non_negative());
   cmd->add_option("--rt-priority", args->rt_priority,

@@ -17,11 +17,13 @@
 #include "common/runtime.hpp"
 #include "rigs/cli/command_registry.hpp"
 #include "rigs/cli/flag_checks.hpp"
+#include "rigs/cli/run_flag_options.hpp"
 #include "rigs/cli/signal_stop.hpp"
-#include "rigs/core/node_configs.hpp"
-#include "rigs/core/rig_nodes.hpp"
-#include "rigs/core/rig_threads.hpp"
-#include "rigs/core/shared_dir.hpp"
+#include "rigs/generator/scenario_spec.hpp"
+#include "rigs/run/node_configs.hpp"
+#include "rigs/run/rig_nodes.hpp"
+#include "rigs/run/rig_threads.hpp"
+#include "rigs/scenario/shared_dir.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -39,16 +41,16 @@ int run_part(PartArgs& args) {
   o.write_lcm_log = false;
   const RigPart part = parse_rig_part(args.part);
   if (part == RigPart::kGround) throw std::invalid_argument("node part: the ground side runs in `a3rig run` itself");
-  const Scenario scenario = load_scenario(o.scenario, o.shared_dir);
+  const Scenario scenario = load_scenario_spec(o.scenario, o.shared_dir);
   const RigConfigs configs = make_rig_configs(scenario, o);
   std::unique_ptr<bridge::CanBus> can;
-  RigNodeBuses buses;
+  VehicleBuses buses;
   if (part == RigPart::kBridge || part == RigPart::kFc) {
     can = bridge::open_can_bus(o.can);
     (part == RigPart::kBridge ? buses.can_bridge : buses.can_fc) = can.get();
   }
   std::unique_ptr<RigThreads> threads;  // outlives the nodes: their destructors cancel timers on it
-  RigNodes nodes = make_rig_nodes({part}, configs, o, scenario, buses, false);
+  RigNodes nodes = make_rig_nodes({part}, configs, o, scenario, {buses}, false);
 
   int64_t epoch_ns = -1;
   if (!args.start_now) {
@@ -89,20 +91,10 @@ A3_REGISTER_COMMAND("90-node-part", [](CLI::App& app) {
       "prints 'ready' when built and starts on 'go <CLOCK_MONOTONIC ns>' from stdin (or at once with --start-now).");
   RunOptions& o = args->options;
   cmd->add_option("name", args->part, "dynamics, bridge, fc, linkemu or vehicle")->required();
-  cmd->add_option("--scenario", o.scenario, "as for `a3rig run`")->required();
-  cmd->add_option("--seed", o.seed, "as for `a3rig run` (default 42)");
-  cmd->add_option("--slice", o.slice, "as for `a3rig run`");
-  cmd->add_option("--rtf", o.real_time_factor, "simulated seconds per wall second (default 1)")->check(a3::rigs::positive());
-  cmd->add_option("--lcm-url", o.lcm_url, "LCM URL shared by every part of the run")->required();
-  cmd->add_option("--sync", o.sync, "lockstep (default) or free, as for `a3rig run`")
-      ->transform(CLI::CheckedTransformer(sync_by_name()));
-  cmd->add_option("--can", o.can, "CAN bus between bridge and fc: userspace:NAME, vcan0, can0, ...");
-  cmd->add_option("--integrator", o.integrator, "rk4 (default: fixed-step Runge-Kutta), cvode (adaptive, the accuracy reference) or ode")->check(CLI::IsMember({"rk4", "cvode", "ode"}));
-  cmd->add_option("--dynamics-rate-hz", o.dynamics_rate_hz, "dynamics step rate (default 250)")->check(a3::rigs::positive());
-  o.shared_dir = default_shared_dir();
-  cmd->add_option("--shared-dir", o.shared_dir,
-                  "the ../shared folder (alphabench scenarios, traces; default $A3_SHARED_DIR, else ../shared here "
-                  "or beside the repository)");
+  add_run_flag(*cmd, o, RunFlag::kScenario)->required();
+  add_run_flag(*cmd, o, RunFlag::kLcmUrl)->required();
+  add_run_flags(*cmd, o, {RunFlag::kSeed, RunFlag::kSlice, RunFlag::kRtf, RunFlag::kSync, RunFlag::kCan,
+                          RunFlag::kIntegrator, RunFlag::kDynamicsRate, RunFlag::kSharedDir});
   cmd->add_flag("--start-now", args->start_now, "start at once instead of waiting for 'go' on stdin");
   cmd->callback([args] { command_exit_status() = run_part(*args); });
 });

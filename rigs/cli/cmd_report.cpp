@@ -11,8 +11,9 @@
 
 #include "common/json_file.hpp"
 #include "rigs/cli/command_registry.hpp"
-#include "rigs/core/episode_report.hpp"
-#include "rigs/core/shared_dir.hpp"
+#include "rigs/generator/scenario_spec.hpp"
+#include "rigs/report/episode_report.hpp"
+#include "rigs/scenario/shared_dir.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -60,7 +61,7 @@ int run_report(const ReportArgs& args) {
   if (!episode.is_object()) throw common::InputError(episode_path.string() + ": an episode must be a JSON object");
   const fs::path shared = args.shared_dir.empty() ? default_shared_dir() : fs::path(args.shared_dir);
   const std::optional<Scenario> scenario =
-      args.scenario.empty() ? scenario_of_episode(episode, shared) : std::optional<Scenario>(load_scenario(args.scenario, shared));
+      args.scenario.empty() ? scenario_of_episode(episode, shared) : std::optional<Scenario>(load_scenario_spec(args.scenario, shared));
   const fs::path out = args.out.empty() ? default_output(episode_path, shared) : fs::path(args.out);
   write_episode_report(out, episode, scenario, episode_path.string());
   std::cout << "report: " << out.string() << (scenario ? "" : " (no scenario found: the map shows no world)") << "\n";

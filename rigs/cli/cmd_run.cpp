@@ -11,13 +11,15 @@
 
 #include "rigs/cli/command_registry.hpp"
 #include "rigs/cli/flag_checks.hpp"
+#include "rigs/cli/run_flag_options.hpp"
 #include "rigs/cli/scenario_run_flags.hpp"
 #include "rigs/cli/signal_stop.hpp"
-#include "rigs/core/node_configs.hpp"
-#include "rigs/core/llm_run.hpp"
-#include "rigs/core/rig_runner.hpp"
-#include "rigs/core/run_summary.hpp"
-#include "rigs/core/shared_dir.hpp"
+#include "rigs/generator/scenario_spec.hpp"
+#include "rigs/outputs/run_summary.hpp"
+#include "rigs/run/llm_run.hpp"
+#include "rigs/run/node_configs.hpp"
+#include "rigs/run/rig_runner.hpp"
+#include "rigs/scenario/shared_dir.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -26,7 +28,7 @@ int run(ScenarioRunFlags& args) {
   args.apply();
   RunOptions& o = args.options;
   o.shared_dir = default_shared_dir();
-  const Scenario scenario = load_scenario(o.scenario, o.shared_dir);
+  const Scenario scenario = load_scenario_spec(o.scenario, o.shared_dir);
   make_agent(o);  // a bad agent, think time or LLM endpoint is a usage error before anything is written
   auto print = [&](const std::string& line) {
     if (!o.quiet) std::fprintf(stderr, "%s\n", line.c_str());
@@ -89,9 +91,7 @@ A3_REGISTER_COMMAND("10-run", [](CLI::App& app) {
       "episode's _meta (default: from the URL).");
   RunOptions& o = args->options;
   add_scenario_run_flags(*cmd, *args);
-  cmd->add_option("--agent", o.agent,
-                  "scripted (default), llm (an OpenAI-compatible model: --llm-base-url, --llm-model), "
-                  "replay:<episode.json> or replay:alphabench:<path>");
+  add_run_flag(*cmd, o, RunFlag::kAgent);
   cmd->add_option("--llm-base-url", o.llm_base_url,
                   "--agent llm: the endpoint, e.g. https://api.openai.com/v1, https://openrouter.ai/api/v1, "
                   "http://127.0.0.1:8088/v1 (default $A3_LLM_BASE_URL)");

@@ -1,4 +1,4 @@
-// `a3rig scenario generate`: writes procedurally generated missions (rigs/core/scenario_generator.hpp)
+// `a3rig scenario generate`: writes procedurally generated missions (rigs/generator/scenario_generator.hpp)
 // as scenario files, one to -o or stdout, or --count of them (seeds SEED.. SEED+K-1) to --out-dir.
 #include <CLI/CLI.hpp>
 
@@ -10,7 +10,7 @@
 
 #include "rigs/cli/command_registry.hpp"
 #include "rigs/cli/flag_checks.hpp"
-#include "rigs/core/scenario_generator.hpp"
+#include "rigs/generator/scenario_generator.hpp"
 
 namespace a3::rigs {
 namespace {

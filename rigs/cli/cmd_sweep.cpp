@@ -19,9 +19,10 @@
 #include "rigs/cli/command_registry.hpp"
 #include "rigs/cli/flag_checks.hpp"
 #include "rigs/cli/signal_stop.hpp"
-#include "rigs/core/builtin_scenarios.hpp"
-#include "rigs/core/scenario.hpp"
-#include "rigs/core/shared_dir.hpp"
+#include "rigs/generator/scenario_spec.hpp"
+#include "rigs/scenario/builtin_scenarios.hpp"
+#include "rigs/scenario/scenario.hpp"
+#include "rigs/scenario/shared_dir.hpp"
 #include "rigs/sweep/cell_result.hpp"
 #include "rigs/sweep/cell_runner.hpp"
 #include "rigs/sweep/slurm_job.hpp"
@@ -219,25 +220,22 @@ std::string this_program() {
   return std::string(exe, static_cast<std::size_t>(length));
 }
 
-int run(const SweepArgs& args, const CLI::App& cmd) {
-  check_flag_combinations(args, cmd);
-  if (!args.plot_only.empty()) return plot_only(args.plot_only, args.expect_shards);
-  const sweep::SweepAxes axes = sweep::make_axes(args.scenarios.empty() ? all_builtin_scenarios() : args.scenarios,
-                                                 args.agents, args.think_times, args.slices, args.seeds);
-  const sweep::Shard shard = sweep::parse_shard(args.shard);
+// Each scenario's mission time limit (for the estimate); a scenario that does not load is a bad
+// --scenarios item.
+std::map<std::string, double> time_limits_of(const std::vector<std::string>& scenarios) {
   const std::filesystem::path shared_dir = default_shared_dir();
   std::map<std::string, double> time_limit_s;
-  for (const auto& scenario : axes.scenarios) {
+  for (const auto& scenario : scenarios) {
     try {
-      time_limit_s[scenario] = load_scenario(scenario, shared_dir).mission.time_limit_s;
+      time_limit_s[scenario] = load_scenario_spec(scenario, shared_dir).mission.time_limit_s;
     } catch (const std::exception& e) {
       throw std::invalid_argument("--scenarios: '" + scenario + "': " + e.what());
     }
   }
-  const std::vector<sweep::SweepCell> grid = sweep::expand_grid(axes);
-  if (args.slurm || args.slurm_dry_run) return run_on_slurm(args, cmd, grid.size(), this_program());
-  const std::vector<sweep::SweepCell> mine = sweep::cells_of_shard(grid, shard);
+  return time_limit_s;
+}
 
+sweep::ChildProcessOptions child_options(const SweepArgs& args) {
   sweep::ChildProcessOptions child;
   child.a3rig_exe = this_program();
   child.runtime = args.runtime;
@@ -245,7 +243,53 @@ int run(const SweepArgs& args, const CLI::App& cmd) {
   child.cell_timeout_s = args.cell_timeout_s >= 0.0 ? args.cell_timeout_s : (args.runtime == "virtual" ? 900.0 : 0.0);
   if (!args.llm_base_url.empty()) child.extra_run_args.insert(child.extra_run_args.end(), {"--llm-base-url", args.llm_base_url});
   if (!args.llm_model.empty()) child.extra_run_args.insert(child.extra_run_args.end(), {"--llm-model", args.llm_model});
-  sweep::ChildProcessCellRunner runner(child);
+  return child;
+}
+
+// The closing lines: where the results are, how fast, what failed, and the report (or how to
+// gather the shards).
+void print_summary(const sweep::SweepRunSummary& summary, const SweepArgs& args, const sweep::Shard& shard) {
+  const auto& c = summary.counts;
+  std::printf("results:   %s (%zu cells: %zu run, %zu already complete, %zu failed%s)\n", summary.results_path.c_str(),
+              c.total, c.ran, c.skipped, c.failed, summary.stopped ? ", the rest not run: stopped" : "");
+  if (c.ran + c.failed > 0) {
+    std::printf("wall time: %.1f s for %zu episodes run with %d jobs: %.2f episodes/s\n", c.elapsed_s, c.ran + c.failed,
+                args.jobs, static_cast<double>(c.ran + c.failed) / std::max(c.elapsed_s, 1e-9));
+  }
+  if (summary.realtime_reruns > 0) {
+    std::printf("real time: %zu run(s) repeated because the host broke the real-time contract (status "
+                "realtime_violated; see README \"Real time\")\n", summary.realtime_reruns);
+  }
+  for (const auto& row : summary.rows) {
+    if (!row.has_episode && row.status.rfind("not_run", 0) != 0) {
+      const bool interrupted = row.status.rfind("stopped", 0) == 0;
+      std::printf("%s %s / %s / think %s / %s / seed %llu: %s\n", interrupted ? "rerun next:" : "failed:   ",
+                  row.scenario.c_str(), row.agent.c_str(),
+                  row.think_time.c_str(), row.slice.c_str(), static_cast<unsigned long long>(row.seed),
+                  row.status.c_str());
+    }
+  }
+  if (shard.count == 1) {
+    print_report(sweep::write_report(args.out, summary.rows));
+  } else {
+    std::printf("shard %d/%d done; once every shard is, gather their folders into one (e.g. cp -r shard-*/. all/) and "
+                "run `a3rig sweep --plot-only all` for results.csv, aggregate.csv and the plots\n",
+                shard.index, shard.count);
+  }
+}
+
+int run(const SweepArgs& args, const CLI::App& cmd) {
+  check_flag_combinations(args, cmd);
+  if (!args.plot_only.empty()) return plot_only(args.plot_only, args.expect_shards);
+  const sweep::SweepAxes axes = sweep::make_axes(args.scenarios.empty() ? all_builtin_scenarios() : args.scenarios,
+                                                 args.agents, args.think_times, args.slices, args.seeds);
+  const sweep::Shard shard = sweep::parse_shard(args.shard);
+  const std::map<std::string, double> time_limit_s = time_limits_of(axes.scenarios);
+  const std::vector<sweep::SweepCell> grid = sweep::expand_grid(axes);
+  if (args.slurm || args.slurm_dry_run) return run_on_slurm(args, cmd, grid.size(), this_program());
+  const std::vector<sweep::SweepCell> mine = sweep::cells_of_shard(grid, shard);
+
+  sweep::ChildProcessCellRunner runner(child_options(args));
 
   std::fprintf(stderr,
                "a3rig sweep: %zu cells (%zu scenarios × %zu agents × %zu think times × %zu slices × %zu seeds); "
@@ -284,35 +328,9 @@ int run(const SweepArgs& args, const CLI::App& cmd) {
   watcher.reset();
   bar.finish(summary.counts);
 
-  const auto& c = summary.counts;
-  std::printf("results:   %s (%zu cells: %zu run, %zu already complete, %zu failed%s)\n", summary.results_path.c_str(),
-              c.total, c.ran, c.skipped, c.failed, summary.stopped ? ", the rest not run: stopped" : "");
-  if (c.ran + c.failed > 0) {
-    std::printf("wall time: %.1f s for %zu episodes run with %d jobs: %.2f episodes/s\n", c.elapsed_s, c.ran + c.failed,
-                args.jobs, static_cast<double>(c.ran + c.failed) / std::max(c.elapsed_s, 1e-9));
-  }
-  if (summary.realtime_reruns > 0) {
-    std::printf("real time: %zu run(s) repeated because the host broke the real-time contract (status "
-                "realtime_violated; see README \"Real time\")\n", summary.realtime_reruns);
-  }
-  for (const auto& row : summary.rows) {
-    if (!row.has_episode && row.status.rfind("not_run", 0) != 0) {
-      const bool interrupted = row.status.rfind("stopped", 0) == 0;
-      std::printf("%s %s / %s / think %s / %s / seed %llu: %s\n", interrupted ? "rerun next:" : "failed:   ",
-                  row.scenario.c_str(), row.agent.c_str(),
-                  row.think_time.c_str(), row.slice.c_str(), static_cast<unsigned long long>(row.seed),
-                  row.status.c_str());
-    }
-  }
-  if (shard.count == 1) {
-    print_report(sweep::write_report(args.out, summary.rows));
-  } else {
-    std::printf("shard %d/%d done; once every shard is, gather their folders into one (e.g. cp -r shard-*/. all/) and "
-                "run `a3rig sweep --plot-only all` for results.csv, aggregate.csv and the plots\n",
-                shard.index, shard.count);
-  }
+  print_summary(summary, args, shard);
   if (summary.stopped || stop) return 3;
-  return c.failed > 0 ? 1 : 0;
+  return summary.counts.failed > 0 ? 1 : 0;
 }
 
 }  // namespace

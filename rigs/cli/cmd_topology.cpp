@@ -9,9 +9,10 @@
 #include <string>
 
 #include "rigs/cli/command_registry.hpp"
-#include "rigs/core/rig_topology.hpp"
-#include "rigs/core/scenario.hpp"
-#include "rigs/core/shared_dir.hpp"
+#include "rigs/generator/scenario_spec.hpp"
+#include "rigs/run/rig_topology.hpp"
+#include "rigs/scenario/scenario.hpp"
+#include "rigs/scenario/shared_dir.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -27,7 +28,7 @@ int print_topology(const TopologyArgs& args) {
   RunOptions options;
   options.runtime = args.runtime == "virtual" ? Runtime::kVirtual : Runtime::kReal;
   options.sync = args.sync;
-  const RigTopology topology = rig_topology(load_scenario(args.scenario, default_shared_dir()), options);
+  const RigTopology topology = rig_topology(load_scenario_spec(args.scenario, default_shared_dir()), options);
   std::cout << (args.format == "dot" ? topology_dot(topology) : topology_text(topology));
   const auto problems = topology_problems(topology);
   for (const std::string& p : problems) std::cerr << "a3rig topology: problem: " << p << "\n";

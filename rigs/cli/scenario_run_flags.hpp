@@ -6,16 +6,15 @@
 
 #include <string>
 
-#include "rigs/core/run_options.hpp"
+#include "rigs/run/run_options.hpp"
 
 namespace a3::rigs {
 
-// Where the flags write: the options, and the two that need converting after parsing.
+// Where the flags write: the options (rigs/cli/run_flag_options.hpp parses each into its field).
 struct ScenarioRunFlags {
   RunOptions options;
-  std::string runtime = "real";  // real | virtual
-  std::string out;               // "" keeps options.out_dir
-  // Applies runtime and out to options; throws std::invalid_argument for a bad combination.
+  // Checks what no single flag can (--processes with virtual time, memq:// in real time) and
+  // sets the log level for -q; throws std::invalid_argument for a bad combination.
   void apply();
 };
 

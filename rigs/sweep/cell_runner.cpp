@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "common/atomic_file.hpp"
+#include "rigs/run/run_flags.hpp"
 
 extern char** environ;
 
@@ -65,13 +66,26 @@ ChildProcessCellRunner::ChildProcessCellRunner(ChildProcessOptions options) : op
 }
 
 std::vector<std::string> ChildProcessCellRunner::command(const SweepCell& cell, const std::filesystem::path& dir) const {
-  std::vector<std::string> argv = {options_.a3rig_exe.string(), "run", "--runtime", options_.runtime,
-                                   "--scenario", cell.scenario, "--agent", cell.agent,
-                                   "--think-time", cell.think_time, "--slice", cell.slice,
-                                   "--seed", std::to_string(cell.seed), "--out", dir.string(),
-                                   "--no-lcm-log", "--no-plot", "--quiet"};
-  if (options_.runtime == "real") {
-    argv.insert(argv.end(), {"--rtf", format_seconds(options_.real_time_factor)});
+  RunOptions o;
+  o.runtime = options_.runtime == "real" ? Runtime::kReal : Runtime::kVirtual;
+  o.scenario = cell.scenario;
+  o.agent = cell.agent;
+  o.think_time = cell.think_time;
+  o.slice = linkemu::parse_slice(cell.slice);
+  o.seed = cell.seed;
+  o.out_dir = dir;
+  o.write_lcm_log = false;
+  o.write_plot = false;
+  o.quiet = true;
+  o.real_time_factor = options_.real_time_factor;
+  std::vector<std::string> argv = {options_.a3rig_exe.string(), "run"};
+  for (std::string& a : to_argv(o, {RunFlag::kRuntime, RunFlag::kScenario, RunFlag::kAgent, RunFlag::kThinkTime,
+                                    RunFlag::kSlice, RunFlag::kSeed, RunFlag::kOut, RunFlag::kNoLcmLog,
+                                    RunFlag::kNoPlot, RunFlag::kQuiet})) {
+    argv.push_back(std::move(a));
+  }
+  if (o.runtime == Runtime::kReal) {
+    for (std::string& a : to_argv(o, {RunFlag::kRtf})) argv.push_back(std::move(a));
   }
   argv.insert(argv.end(), options_.extra_run_args.begin(), options_.extra_run_args.end());
   return argv;

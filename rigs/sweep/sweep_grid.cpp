@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "agent/conversation/think_time.hpp"
+#include "linkemu/network_state.hpp"
 
 namespace a3::rigs::sweep {
 namespace {
@@ -155,7 +156,8 @@ SweepAxes make_axes(const std::string& scenarios, const std::string& agents, con
   axes.slices = split_list(slices, "--slices");
   axes.seeds = parse_seeds(seeds, "--seeds");
   for (const auto& slice : axes.slices) {
-    if (slice != "eMBB" && slice != "URLLC" && slice != "mMTC") {
+    const auto names = linkemu::slice_names();
+    if (std::find(names.begin(), names.end(), slice) == names.end()) {
       throw std::invalid_argument("--slices: '" + slice + "' is not a 6G slice (expected eMBB, URLLC or mMTC)");
     }
   }

@@ -43,7 +43,7 @@ std::vector<std::string> split_list(const std::string& text, const std::string& 
 std::vector<std::string> split_think_times(const std::string& text, const std::string& flag);
 // "1,2,3", "1-5" or a mix ("1-3,10"); non-negative integers, distinct.
 std::vector<uint64_t> parse_seeds(const std::string& text, const std::string& flag);
-// Generated missions (rigs/core/scenario_generator_knobs.hpp) in a sweep: gen:N[:knobs] stands
+// Generated missions (rigs/generator/scenario_generator_knobs.hpp) in a sweep: gen:N[:knobs] stands
 // for the N missions gen:1[:knobs] .. gen:N[:knobs], gen:A-B[:knobs] for seeds A..B; other
 // items pass unchanged. Expanded before the grid, so cell indices and shards stay fixed.
 std::vector<std::string> expand_generated_missions(const std::vector<std::string>& scenarios, const std::string& flag);

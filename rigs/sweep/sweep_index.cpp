@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "common/atomic_file.hpp"
-#include "rigs/core/html_page.hpp"
+#include "rigs/report/html_page.hpp"
 
 namespace a3::rigs::sweep {
 namespace {

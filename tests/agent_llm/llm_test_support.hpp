@@ -15,7 +15,8 @@
 #include <vector>
 
 #include "agent/conversation/scripted_agent.hpp"
-#include "rigs/core/scenario.hpp"
+#include "rigs/generator/scenario_spec.hpp"
+#include "rigs/scenario/scenario.hpp"
 #include "tests/test_support.hpp"
 
 namespace a3::test {
@@ -81,7 +82,7 @@ struct PlayedContext {
 // (a traffic alert at turn `alert_turn`); the network is hard on the turns listed in `hard`.
 inline PlayedContext play_scripted(const std::string& scenario_name, int turns, int alert_turn = -1,
                                    std::vector<int> hard = {}) {
-  PlayedContext p{rigs::load_scenario(scenario_name, shared_dir()), {}, nullptr, {}};
+  PlayedContext p{rigs::load_scenario_spec(scenario_name, shared_dir()), {}, nullptr, {}};
   agent::ScriptedAgent live;
   for (int k = 1; k <= turns; ++k) {
     const bool is_hard = std::find(hard.begin(), hard.end(), k) != hard.end();

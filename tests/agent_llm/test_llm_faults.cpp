@@ -8,7 +8,7 @@
 
 #include "agent/llm/llm_agent.hpp"
 #include "agent/llm/llm_client.hpp"
-#include "rigs/core/llm_run.hpp"
+#include "rigs/run/llm_run.hpp"
 #include "tests/agent_llm/silent_endpoint.hpp"
 
 namespace a3 {

@@ -14,9 +14,9 @@
 #include <cstdlib>
 #include <fstream>
 
+#include "rigs/run/rig_runner.hpp"
+#include "rigs/scenario/scenario.hpp"
 #include "tests/agent_llm/scripted_server.hpp"
-#include "rigs/core/rig_runner.hpp"
-#include "rigs/core/scenario.hpp"
 #include "tests/rigs/rig_test_support.hpp"
 
 // After Eigen (through the rig's headers): httplib.h's includes clash with Eigen's when first.

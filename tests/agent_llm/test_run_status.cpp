@@ -13,9 +13,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "rigs/core/agent_outcome.hpp"
-#include "rigs/core/llm_run.hpp"
-#include "rigs/core/rig_runner.hpp"
+#include "rigs/run/agent_outcome.hpp"
+#include "rigs/run/llm_run.hpp"
+#include "rigs/run/rig_runner.hpp"
 #include "rigs/sweep/cell_result.hpp"
 #include "tests/agent_llm_client/scripted_openai_server.hpp"
 

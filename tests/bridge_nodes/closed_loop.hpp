@@ -16,29 +16,30 @@
 #include "a3lcm/fc_status_t.hpp"
 #include "a3lcm/vehicle_state_t.hpp"
 #include "bridge/can/virtual_can_bus.hpp"
-#include "bridge/nodes/bridge_node.hpp"
 #include "bridge/nodes/fc_node.hpp"
+#include "bridge/sim/bridge_node.hpp"
 #include "common/channels.hpp"
 #include "common/runtime.hpp"
 #include "dynamics/dynamics_node.hpp"
 #include "dynamics/quadrotor_model.hpp"
-#include "rigs/fc_setup.hpp"
+#include "rigs/run/fc_setup.hpp"
 
 namespace a3::test {
 
 // The ground side: commands with increasing seq, heartbeats while enabled, and what comes back.
 class GroundStation final : public common::Node {
  public:
-  std::string name() const override { return "ground"; }
+  explicit GroundStation(common::VehicleId vehicle = 0) : vehicle_(vehicle) {}
+  std::string name() const override { return vehicle_ == 0 ? "ground" : "ground_v" + std::to_string(vehicle_); }
   void start(common::Executor& executor, common::Bus& bus) override {
     executor_ = &executor;
     bus_ = &bus;
-    bus.subscribe<a3lcm::fc_status_t>(common::channels::kFcStatus.of(0), [this](const a3lcm::fc_status_t& s, int64_t) {
+    bus.subscribe<a3lcm::fc_status_t>(common::channels::kFcStatus.of(vehicle_), [this](const a3lcm::fc_status_t& s, int64_t) {
       statuses.push_back(s);
       max_failsafe_seen = std::max<int>(max_failsafe_seen, s.failsafe);
       if (on_status) on_status(s);
     });
-    bus.subscribe<a3lcm::vehicle_state_t>(common::channels::kState.of(0), [this](const a3lcm::vehicle_state_t& s, int64_t) {
+    bus.subscribe<a3lcm::vehicle_state_t>(common::channels::kState.of(vehicle_), [this](const a3lcm::vehicle_state_t& s, int64_t) {
       state = s;
       ++states;
       if (on_state) on_state(s);
@@ -82,9 +83,10 @@ class GroundStation final : public common::Node {
     c.target_W_m[2] = z;
     c.speed_limit_mps = speed_mps;
     c.yaw_deg = yaw_deg;
-    bus_->publish(common::channels::kFcCommand.of(0), c);
+    bus_->publish(common::channels::kFcCommand.of(vehicle_), c);
   }
 
+  common::VehicleId vehicle_ = 0;
   common::Executor* executor_ = nullptr;
   common::Bus* bus_ = nullptr;
   int32_t seq_ = 0;

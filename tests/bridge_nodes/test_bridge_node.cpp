@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "bridge/nodes/bridge_node.hpp"
+#include "bridge/sim/bridge_node.hpp"
 #include "tests/bridge_nodes/node_harness.hpp"
 
 namespace a3::bridge {

@@ -9,9 +9,9 @@
 #include <stdexcept>
 
 #include "a3lcm/safety_event_t.hpp"
-#include "bridge/nodes/bridge_node.hpp"
 #include "bridge/nodes/command_sources.hpp"
 #include "bridge/nodes/fc_node.hpp"
+#include "bridge/sim/bridge_node.hpp"
 #include "common/virtual_scheduler.hpp"
 #include "tests/bridge_nodes/node_harness.hpp"
 

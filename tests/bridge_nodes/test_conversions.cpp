@@ -11,9 +11,9 @@
 #include "bridge/nodes/esc_scaling.hpp"
 #include "bridge/nodes/fc_messages.hpp"
 #include "bridge/nodes/frames.hpp"
-#include "bridge/nodes/rate_schedule.hpp"
-#include "bridge/nodes/sensor_frames.hpp"
 #include "bridge/nodes/sensor_readings.hpp"
+#include "bridge/sim/rate_schedule.hpp"
+#include "bridge/sim/sensor_frames.hpp"
 
 namespace a3::bridge {
 namespace {

@@ -8,10 +8,10 @@
 #include <cmath>
 #include <limits>
 
-#include "bridge/nodes/bridge_node.hpp"
-#include "bridge/nodes/fc_node.hpp"
-#include "bridge/nodes/sensor_frames.hpp"
 #include "bridge/fc/state_estimator.hpp"
+#include "bridge/nodes/fc_node.hpp"
+#include "bridge/sim/bridge_node.hpp"
+#include "bridge/sim/sensor_frames.hpp"
 #include "tests/bridge_nodes/node_harness.hpp"
 
 namespace a3::bridge {

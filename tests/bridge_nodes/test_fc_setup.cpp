@@ -1,9 +1,9 @@
-// rigs/fc_setup.hpp: the fc told the airframe the dynamics fly (payloads included), the
+// rigs/run/fc_setup.hpp: the fc told the airframe the dynamics fly (payloads included), the
 // geofence of a parsed initial_state, the home point.
 #include <gtest/gtest.h>
 
 #include "dynamics/vehicle_params.hpp"
-#include "rigs/fc_setup.hpp"
+#include "rigs/run/fc_setup.hpp"
 
 namespace a3::rigs {
 namespace {

@@ -10,8 +10,9 @@
 #include "bridge/can/virtual_can_bus.hpp"
 #include "bridge/dronecan/messages.hpp"
 #include "common/runtime.hpp"
-#include "rigs/core/node_configs.hpp"
-#include "rigs/core/rig_nodes.hpp"
+#include "rigs/generator/scenario_spec.hpp"
+#include "rigs/run/node_configs.hpp"
+#include "rigs/run/rig_nodes.hpp"
 #include "tests/bridge_nodes/node_harness.hpp"
 #include "tests/rigs/rig_test_support.hpp"
 
@@ -21,14 +22,14 @@ namespace {
 struct SpoofedVirtualRig {
   explicit SpoofedVirtualRig(const std::string& scenario_name)
       : options(a3::test::virtual_run(scenario_name, "spoofed")),
-        scenario(load_scenario(options.scenario, options.shared_dir)),
+        scenario(load_scenario_spec(options.scenario, options.shared_dir)),
         configs(make_rig_configs(scenario, options)),
         can(rt.scheduler()),
         can_bridge(can.attach("bridge")),
         can_fc(can.attach("fc")),
         nodes(make_rig_nodes({RigPart::kGround, RigPart::kDynamics, RigPart::kBridge, RigPart::kFc, RigPart::kLinkemu,
                               RigPart::kVehicle},
-                             configs, options, scenario, {can_bridge.get(), can_fc.get()}, false)),
+                             configs, options, scenario, {{can_bridge.get(), can_fc.get()}}, false)),
         spoofer(can, 99) {
     for (common::Node* node : nodes.in_start_order()) rt.add(*node);
     spoofer.start(rt.scheduler());
@@ -71,7 +72,7 @@ TEST(RigUnderSpoofing, EmergencyStopsFromAStrayNodeDoNotBringTheVehicleDown) {
   EXPECT_FALSE(r.last_state.crashed);
   EXPECT_FALSE(r.last_state.on_ground);
   EXPECT_GT(r.last_state.p_W_m[2], 3.0);
-  EXPECT_NE(rig.nodes.fc->status_snapshot().mode, bridge::FcMode::kEmergency);
+  EXPECT_NE(rig.nodes.agent_vehicle().fc->status_snapshot().mode, bridge::FcMode::kEmergency);
   EXPECT_EQ(rig.nodes.counters()["fc"]["commands_rejected_source"], kSpoofed);
   double refused = 0.0;
   int events = 0;

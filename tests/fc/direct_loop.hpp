@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "bridge/fc/flight_controller.hpp"
-#include "bridge/fc/sensor_model.hpp"
+#include "bridge/sim/sensor_model.hpp"
 #include "dynamics/battery.hpp"
 #include "dynamics/integrator.hpp"
 

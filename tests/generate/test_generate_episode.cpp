@@ -1,4 +1,4 @@
-// One generated episode (rigs/core/generate_episode.hpp) against a scripted chat: the attempt
+// One generated episode (rigs/generate/generate_episode.hpp) against a scripted chat: the attempt
 // ladder with stricter instructions, validation, `_meta` key for key as the public corpus, usage
 // summed over attempts, failure stubs, and endpoint failures that stop the run.
 #include <gtest/gtest.h>
@@ -12,9 +12,9 @@
 #include "eval/episode_schema.hpp"
 #include "eval/json_schema_validator.hpp"
 #include "eval/scoring_profile.hpp"
-#include "rigs/core/generate_episode.hpp"
-#include "rigs/core/generate_scenarios.hpp"
-#include "rigs/core/scenario.hpp"
+#include "rigs/generate/generate_episode.hpp"
+#include "rigs/generate/generate_scenarios.hpp"
+#include "rigs/scenario/scenario.hpp"
 #include "tests/test_support.hpp"
 
 namespace {

@@ -1,4 +1,4 @@
-// A generate run (rigs/core/generate_run.hpp) with a scripted chat: the file layout, resuming
+// A generate run (rigs/generate/generate_run.hpp) with a scripted chat: the file layout, resuming
 // (valid episodes and stubs kept, invalid files replaced, another seed list refused), stopping
 // early on an endpoint failure with the finished files kept, and concurrent jobs.
 #include <gtest/gtest.h>
@@ -13,7 +13,7 @@
 #include <sstream>
 #include <string>
 
-#include "rigs/core/generate_run.hpp"
+#include "rigs/generate/generate_run.hpp"
 #include "tests/test_support.hpp"
 
 namespace {

@@ -9,7 +9,8 @@
 #include <cstdlib>
 #include <thread>
 
-#include "rigs/core/mcp_run.hpp"
+#include "rigs/generator/scenario_spec.hpp"
+#include "rigs/run/mcp_run.hpp"
 #include "tests/rigs/rig_test_support.hpp"
 
 namespace a3::rigs {
@@ -48,7 +49,7 @@ template <typename Fly>
 Flight fly_episode(const std::string& scenario, const std::string& tag, Fly fly, const std::string& think_time = "0") {
   RunOptions o = test::virtual_run(scenario, "mcp-" + tag);
   o.think_time = think_time;
-  const Scenario s = load_scenario(o.scenario, o.shared_dir);
+  const Scenario s = load_scenario_spec(o.scenario, o.shared_dir);
   std::atomic<bool> stop{false};
   auto agent = make_mcp_agent(s, o, &stop);
   Client client{*agent, {}, 0};
@@ -104,7 +105,7 @@ TEST(McpEpisode, AClientFliesParcelDeliveryToSuccessAndTheEpisodeIsValid) {
 
 TEST(McpEpisode, ACallAfterTheEndNamesTheStatusAndTheEpisode) {
   RunOptions o = test::virtual_run("parcel-delivery", "mcp-after");
-  const Scenario s = load_scenario(o.scenario, o.shared_dir);
+  const Scenario s = load_scenario_spec(o.scenario, o.shared_dir);
   std::atomic<bool> stop{false};
   auto agent = make_mcp_agent(s, o, &stop);
   agent->set_episode_over("completed", o.out_dir / "episode.json");

@@ -5,7 +5,8 @@
 
 #include <thread>
 
-#include "rigs/core/mcp_run.hpp"
+#include "rigs/generator/scenario_spec.hpp"
+#include "rigs/run/mcp_run.hpp"
 #include "tests/rigs/real_time_support.hpp"
 
 namespace a3::rigs {
@@ -18,7 +19,7 @@ TEST(McpRealTime, TheClientsTimeBetweenCallsPassesInTheWorld) {
   RunOptions o = test::virtual_run("parcel-delivery", "mcp-real-time");
   o.runtime = Runtime::kReal;
   o.lcm_url = test::private_udpm_url();
-  const Scenario s = load_scenario(o.scenario, o.shared_dir);
+  const Scenario s = load_scenario_spec(o.scenario, o.shared_dir);
   std::atomic<bool> stop{false};
   auto agent = make_mcp_agent(s, o, &stop);
   agent::mcp::McpCallResult telemetry, reply;

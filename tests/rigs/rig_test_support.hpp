@@ -7,7 +7,8 @@
 #include "eval/episode_reader.hpp"
 #include "eval/episode_schema.hpp"
 #include "eval/pillars.hpp"
-#include "rigs/core/rig_runner.hpp"
+#include "rigs/generator/scenario_spec.hpp"
+#include "rigs/run/rig_runner.hpp"
 #include "tests/eval/episode_builder.hpp"
 #include "tests/test_support.hpp"
 
@@ -27,7 +28,7 @@ inline rigs::RunOptions virtual_run(const std::string& scenario, const std::stri
 }
 
 inline rigs::RunResult run(const rigs::RunOptions& o) {
-  const rigs::Scenario s = rigs::load_scenario(o.scenario, o.shared_dir);
+  const rigs::Scenario s = rigs::load_scenario_spec(o.scenario, o.shared_dir);
   return rigs::run_episode(s, o, {}, nullptr);
 }
 

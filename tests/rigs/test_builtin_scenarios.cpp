@@ -6,7 +6,7 @@
 #include <set>
 
 #include "eval/corpus_scorer.hpp"
-#include "rigs/core/scenario.hpp"
+#include "rigs/scenario/scenario.hpp"
 #include "tests/rigs/rig_test_support.hpp"
 
 namespace a3::rigs {

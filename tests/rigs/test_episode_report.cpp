@@ -5,8 +5,8 @@
 #include <string>
 
 #include "common/json_file.hpp"
-#include "rigs/core/episode_report.hpp"
-#include "rigs/core/report_world.hpp"
+#include "rigs/report/episode_report.hpp"
+#include "rigs/report/report_world.hpp"
 #include "tests/rigs/rig_test_support.hpp"
 
 namespace {

@@ -10,7 +10,8 @@
 #include <numeric>
 
 #include "eval/corpus_scorer.hpp"
-#include "rigs/core/scenario.hpp"
+#include "rigs/generator/scenario_spec.hpp"
+#include "rigs/scenario/scenario.hpp"
 #include "tests/rigs/rig_test_support.hpp"
 
 namespace a3::rigs {
@@ -55,7 +56,7 @@ TEST_P(GeneratedMissions, ScriptedAgentFliesThemSafelyAndMostlySucceeds) {
   for (int seed = 1; seed <= n; ++seed) {
     const std::string spec = "gen:" + std::to_string(seed) + ":" + GetParam();
     RunOptions o = a3::test::virtual_run(spec, GetParam() + "-" + std::to_string(seed));
-    const Scenario s = load_scenario(spec, o.shared_dir);
+    const Scenario s = load_scenario_spec(spec, o.shared_dir);
     const RunResult r = rigs::run_episode(s, o, {}, nullptr);
     const a3::test::Scored scored = a3::test::score(r.episode);
     ASSERT_TRUE(scored.valid) << spec << ": " << scored.problems;

@@ -1,9 +1,9 @@
-// The real-time accounting and contract of an episode (rigs/core/realtime_report): what breaks
+// The real-time accounting and contract of an episode (rigs/run/realtime_report): what breaks
 // the contract in lockstep (only a wall-clock agent's distorted latency) and free-running (a late
 // host), the window meter, and the counters made from the nodes' statistics.
 #include <gtest/gtest.h>
 
-#include "rigs/core/realtime_report.hpp"
+#include "rigs/run/realtime_report.hpp"
 
 namespace a3::rigs {
 namespace {

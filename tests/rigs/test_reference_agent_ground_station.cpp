@@ -3,10 +3,10 @@
 // drop height) over the goal; a descent the gate refuses fails the plan with the reason.
 #include <gtest/gtest.h>
 
-#include "agent/vehicle/ground_station.hpp"
-#include "tests/agent_vehicle/vehicle_test_util.hpp"
+#include "tests/vehicle/vehicle_test_util.hpp"
+#include "vehicle/ground_station.hpp"
 
-namespace a3::agent {
+namespace a3::vehicle {
 namespace {
 
 GroundStation station(const SafetyGate& gate) { return GroundStation(gate, PlannerConfig{}); }
@@ -37,4 +37,4 @@ TEST(ReferenceAgentGroundStation, ADescentBelowTheAltitudeEnvelopeFailsWithTheRe
 }
 
 }  // namespace
-}  // namespace a3::agent
+}  // namespace a3::vehicle

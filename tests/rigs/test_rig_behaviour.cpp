@@ -197,7 +197,7 @@ TEST(RigBehaviour, TheScriptedAgentFinishesEachLegBeforeTheNext) {
                                          {"nfz-detour", "URLLC", 2}}) {
     const std::string what = k.scenario + " on " + k.slice + ", seed " + std::to_string(k.seed);
     RunOptions o = a3::test::virtual_run(k.scenario, "legs-" + k.scenario + "-" + std::to_string(k.seed));
-    o.slice = k.slice;
+    o.slice = linkemu::parse_slice(k.slice);
     o.seed = k.seed;
     const RunResult r = a3::test::run(o);
     EXPECT_EQ(r.status, "completed") << what;

@@ -6,7 +6,7 @@
 #include "eval/episode_reader.hpp"
 #include "eval/episode_schema.hpp"
 #include "eval/pillars.hpp"
-#include "rigs/core/episode_writer.hpp"
+#include "rigs/outputs/episode_writer.hpp"
 
 namespace a3::rigs {
 namespace {

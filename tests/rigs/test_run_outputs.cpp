@@ -1,14 +1,15 @@
-// rigs/core/run_outputs: the run's status when an output is lost, the free-space estimate
+// rigs/outputs/run_outputs: the run's status when an output is lost, the free-space estimate
 // before take-off, and the refusal on a filesystem too small (a tmpfs; skipped when not root).
-#include "rigs/core/run_outputs.hpp"
+#include "rigs/generator/scenario_spec.hpp"
+#include "rigs/outputs/run_outputs.hpp"
 
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
 #include <cstdio>
 
-#include "rigs/core/rig_runner.hpp"
-#include "rigs/core/run_summary.hpp"
+#include "rigs/outputs/run_summary.hpp"
+#include "rigs/run/rig_runner.hpp"
 #include "tests/rigs/rig_test_support.hpp"
 #include "tests/tiny_tmpfs.hpp"
 
@@ -42,7 +43,7 @@ TEST(RunOutputs, TheEstimateGrowsWithTheTimeLimitAndDropsWhatIsNotWritten) {
   o.write_lcm_log = true;
   o.write_plot = true;
   o.write_report = true;
-  Scenario s = load_scenario(o.scenario, o.shared_dir);
+  Scenario s = load_scenario_spec(o.scenario, o.shared_dir);
   const OutputSpaceEstimate all = estimate_output_bytes(s, o);
   EXPECT_GT(all.lcm_log_bytes, all.episode_bytes);
   EXPECT_GT(all.plot_bytes, 0u);
@@ -66,7 +67,7 @@ TEST_P(RunOutputsMeasured, AFlightsFilesFitInTheEstimate) {
   o.write_lcm_log = true;
   o.write_plot = true;
   o.write_report = true;
-  const Scenario s = load_scenario(o.scenario, o.shared_dir);
+  const Scenario s = load_scenario_spec(o.scenario, o.shared_dir);
   const RunResult r = test::run(o);
   ASSERT_EQ(r.status, "completed");
   namespace fs = std::filesystem;
@@ -93,7 +94,7 @@ TEST(RunOutputsFaults, ASmallFilesystemIsRefusedBeforeTakeOffUnlessSkipped) {
   RunOptions o = test::virtual_run("parcel-delivery", "space");
   o.out_dir = disk.path() / "run";
   o.write_lcm_log = true;
-  const Scenario s = load_scenario(o.scenario, o.shared_dir);
+  const Scenario s = load_scenario_spec(o.scenario, o.shared_dir);
   try {
     check_output_space(s, o);
     FAIL() << "no OutputSpaceError";
@@ -122,7 +123,7 @@ TEST(RunOutputsFaults, AnInterruptedRunWhoseLogFailedSaysBoth) {
   o.write_lcm_log = true;
   ::setenv(kSkipSpaceCheckEnv, "1", 1);
   const std::atomic<bool> stop{true};
-  const RunResult r = run_episode(load_scenario(o.scenario, o.shared_dir), o, {}, &stop);
+  const RunResult r = run_episode(load_scenario_spec(o.scenario, o.shared_dir), o, {}, &stop);
   ::unsetenv(kSkipSpaceCheckEnv);
   const std::string lost = (o.out_dir / "episode.lcmlog").string() + ": No space left on device";
   EXPECT_EQ(r.status, "interrupted");

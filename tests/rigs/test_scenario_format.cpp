@@ -1,4 +1,4 @@
-// The scenario format (rigs/schema/scenario.schema.json, rigs/core/scenario_checks.hpp): every
+// The scenario format (rigs/schema/scenario.schema.json, rigs/scenario/scenario_checks.hpp): every
 // kind of bad scenario a user found accepted is refused with its file and JSON path, the
 // built-in scenarios and the public corpus' initial states load, and fields are honoured
 // (network.link, policy.alt_bounds, battery_pct, gust) rather than dropped.
@@ -9,10 +9,10 @@
 
 #include "common/json_file.hpp"
 #include "common/json_text.hpp"
-#include "rigs/core/builtin_scenarios.hpp"
-#include "rigs/core/scenario.hpp"
-#include "rigs/core/scenario_checks.hpp"
-#include "rigs/core/scenario_schema.hpp"
+#include "rigs/scenario/builtin_scenarios.hpp"
+#include "rigs/scenario/scenario.hpp"
+#include "rigs/scenario/scenario_checks.hpp"
+#include "rigs/scenario/scenario_schema.hpp"
 #include "tests/test_support.hpp"
 
 namespace a3::rigs {

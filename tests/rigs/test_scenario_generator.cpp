@@ -3,9 +3,10 @@
 // bad specs refused with the item named.
 #include <gtest/gtest.h>
 
-#include "agent/vehicle/safety_gate.hpp"
 #include "common/json_file.hpp"
-#include "rigs/core/scenario_generator.hpp"
+#include "rigs/generator/scenario_generator.hpp"
+#include "rigs/generator/scenario_spec.hpp"
+#include "vehicle/safety_gate.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -29,7 +30,7 @@ std::vector<Eigen::Vector2d> objective_points(const agent::Objective& o) {
 
 // Home and every objective point inside the geofence and clear of every zone by the gate's margin.
 void expect_clear_geometry(const Scenario& s) {
-  const double margin = agent::GateConfig{}.nfz_margin_m;
+  const double margin = vehicle::GateConfig{}.nfz_margin_m;
   std::vector<Eigen::Vector2d> pts = {s.mission.home_W_m.head<2>()};
   for (const auto& o : s.mission.objectives) {
     for (const auto& p : objective_points(o)) pts.push_back(p);
@@ -57,7 +58,7 @@ TEST(ScenarioGenerator, AThousandSeedsAllLoadAsValidScenariosWithClearGeometry) 
   for (const std::string difficulty : {"easy", "medium", "hard"}) {
     for (int seed = 1; seed <= 334; ++seed) {
       const std::string spec = "gen:" + std::to_string(seed) + ":" + difficulty;
-      const Scenario s = load_scenario(spec, ".");  // the schema and the semantic checks of a file
+      const Scenario s = load_scenario_spec(spec, ".");  // the schema and the semantic checks of a file
       EXPECT_EQ(s.source, spec);
       expect_clear_geometry(s);
       EXPECT_GE(s.mission.time_limit_s, 300.0) << spec;
@@ -119,6 +120,24 @@ TEST(ScenarioGenerator, BadSpecsNameTheItem) {
   EXPECT_NE(error_of("gen:1:extreme").find("'extreme'"), std::string::npos);
   EXPECT_NE(error_of("gen:1:turns=14").find("turns=14"), std::string::npos);
   EXPECT_NE(error_of("gen:1:easy++wind=2").find("empty knob"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace a3::rigs
+
+namespace a3::rigs {
+namespace {
+
+// gen: specs are resolved before loading: the loader refuses one, saying where it is made.
+TEST(ScenarioSpec, TheLoaderNeverGeneratesTheSpecLoaderDoes) {
+  try {
+    (void)load_scenario("gen:7:hard", ".");
+    FAIL() << "the loader generated a mission";
+  } catch (const common::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("load_scenario_spec"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(load_scenario_spec("gen:7:hard", ".").source, "gen:7:hard");
+  EXPECT_EQ(load_scenario_spec("nfz-detour", ".").name, load_scenario("nfz-detour", ".").name);
 }
 
 }  // namespace

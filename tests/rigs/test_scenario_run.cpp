@@ -9,7 +9,7 @@
 #include <string>
 #include <unistd.h>
 
-#include "rigs/core/scenario.hpp"
+#include "rigs/scenario/scenario.hpp"
 #include "tests/integration/run_command.hpp"
 #include "tests/rigs/rig_test_support.hpp"
 

@@ -5,9 +5,10 @@
 #include <gtest/gtest.h>
 
 #include "common/channels.hpp"
-#include "rigs/core/builtin_scenarios.hpp"
-#include "rigs/core/rig_topology.hpp"
-#include "rigs/core/scenario.hpp"
+#include "rigs/generator/scenario_spec.hpp"
+#include "rigs/run/rig_topology.hpp"
+#include "rigs/scenario/builtin_scenarios.hpp"
+#include "rigs/scenario/scenario.hpp"
 #include "tests/test_support.hpp"
 
 namespace a3::rigs {
@@ -19,7 +20,7 @@ RigTopology topology_of(const std::string& scenario_name, Runtime runtime, Sync 
   RunOptions o;
   o.runtime = runtime;
   o.sync = sync;
-  return rig_topology(load_scenario(scenario_name, test::shared_dir()), o);
+  return rig_topology(load_scenario_spec(scenario_name, test::shared_dir()), o);
 }
 
 TEST(Topology, EveryBuiltInRigIsAWholeGraphInEachRuntime) {

@@ -2,7 +2,7 @@
 // no-fly zone (labelled with id, floor and ceiling), the geofence in view, one data block per
 // peer with a row per waypoint, one row per safety event grouped by kind with a legend entry;
 // and gnuplot, when installed, draws it into a PNG.
-#include "rigs/core/trajectory_plot.hpp"
+#include "rigs/report/trajectory_plot.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <regex>
 #include <sstream>
 
-#include "rigs/core/episode_writer.hpp"
+#include "rigs/outputs/episode_writer.hpp"
 #include "tests/eval/episode_builder.hpp"
 
 namespace a3::rigs {

@@ -12,7 +12,7 @@
 #include "bridge/can/virtual_can_bus.hpp"
 #include "bridge/dronecan/msg/air_data.hpp"
 #include "bridge/dronecan/node.hpp"
-#include "bridge/nodes/bridge_node.hpp"
+#include "bridge/sim/bridge_node.hpp"
 #include "common/channels.hpp"
 #include "common/runtime.hpp"
 #include "dynamics/actuator_script_node.hpp"

@@ -1,4 +1,4 @@
-// initial_state.uav.payloads, parsed once (rigs/core/uav_payloads.hpp) into the dynamics'
+// initial_state.uav.payloads, parsed once (rigs/scenario/uav_payloads.hpp) into the dynamics'
 // physical payloads and the sensor suite's declared ones: every field read, defaults, each bad
 // field refused naming its JSON path; and parse_initial_state hands both parts, the sensors'
 // health and the env on as typed values.
@@ -6,10 +6,10 @@
 
 #include <string>
 
-#include "agent/vehicle/sensor_suite.hpp"
 #include "common/json_file.hpp"
-#include "rigs/core/initial_state.hpp"
-#include "rigs/core/uav_payloads.hpp"
+#include "rigs/scenario/initial_state.hpp"
+#include "rigs/scenario/uav_payloads.hpp"
+#include "vehicle/sensor_suite.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -55,9 +55,9 @@ TEST(UavPayloadsParser, ReadsThePhysicalAndTheDeclaredPartOfEachPayload) {
 TEST(UavPayloadsParser, TheSensorSuiteTakesPayloadsWithoutAnIdAsTheCorpusWritesThem) {
   const json doc = json::parse(R"([{"type": "parcel_delivery_system", "mass_kg": 1.2},
                                    {"type": "thermal_camera", "category": "imaging_thermal", "mass_kg": 0.3}])");
-  agent::SensorSuiteConfig config;
+  vehicle::SensorSuiteConfig config;
   config.payloads = parse_uav_payloads(doc, kPath).declared;
-  const agent::SensorSuite suite(config, agent::ImageSizes{});
+  const vehicle::SensorSuite suite(config, vehicle::ImageSizes{});
   ASSERT_NE(suite.find("payload1"), nullptr);
   EXPECT_TRUE(suite.find("payload1")->imaging);
   EXPECT_FALSE(suite.find("payload0")->imaging);

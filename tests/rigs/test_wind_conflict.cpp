@@ -10,8 +10,8 @@
 #include <memory>
 
 #include "agent/conversation/agent.hpp"
-#include "agent/vehicle/swarm_peer.hpp"
 #include "tests/rigs/rig_test_support.hpp"
+#include "vehicle/swarm_peer.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -111,7 +111,7 @@ TEST(WindConflict, AtTheCommandedSpeedTheScenarioLooksClear) {
   agent::TrafficPlan commanded;
   commanded.id = "self";
   commanded.path = {{asked_s, kHome_W_m}, {asked_s + leg_s, kMast_W_m}};
-  const agent::Approach a = agent::closest_approach(commanded, s.airspace.traffic[0], asked_s, 60.0);
+  const vehicle::Approach a = vehicle::closest_approach(commanded, s.airspace.traffic[0], asked_s, 60.0);
   EXPECT_GT(a.distance_m, 40.0);
 }
 
