@@ -188,7 +188,9 @@ void AirspaceMonitorNode::check_altitude(const a3lcm::vehicle_state_t& s, const 
 
 void AirspaceMonitorNode::check_separation(const a3lcm::vehicle_state_t& s, const Eigen::Vector3d& p) {
   const double h = config_.hysteresis_m;
-  for (auto& [id, peer] : peers_) {
+  for (auto& entry : peers_) {
+    const std::string& id = entry.first;  // named, not a structured binding: lambdas below take it
+    auto& peer = entry.second;
     const double age_s = static_cast<double>(s.utime_us - peer.last.utime_us) * 1e-6;
     if (age_s > config_.traffic_timeout_s) {
       track(s, peer.breach, false, true, "separation_breach", peer.breach.worst, false,
