@@ -1,9 +1,10 @@
 # Helpers shared by every folder's CMakeLists.txt.
 
-# Precompiled headers for the test programs (A3_PCH, on by default): the heavy headers every test
-# includes, parsed once for all of them. Not for the libraries: GCC 12 at -O3 then reports its
-# own std::string internals (false positives the system-header silence hides without one).
-option(A3_PCH "Precompile the heaviest headers the test programs share" ON)
+# Precompiled headers (A3_PCH, on by default): the heavy headers every test includes, parsed once
+# for all of them, and the same for the `a3rig` program's commands (CLI11 as well), the heaviest
+# part of the program's own build. Not for the libraries: GCC 12 at -O3 then reports its own
+# std::string internals (false positives the system-header silence hides without one).
+option(A3_PCH "Precompile the heaviest headers the test programs and the a3rig program share" ON)
 set(A3_PCH_HEADERS <nlohmann/json.hpp> <string> <vector> <map> <memory> <functional> <chrono>
     <optional> <filesystem>)
 
