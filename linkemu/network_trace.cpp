@@ -58,32 +58,45 @@ std::string problem(const std::string& where, const std::string& text) {
   return where + (top ? "" : ": ") + text;
 }
 
+void check_period(double period_s, const std::string& where) {
+  if (!(period_s > 0.0) || !std::isfinite(period_s)) {
+    throw InputError(problem(where, "the trace period must be a positive number of seconds"));
+  }
+}
+
 }  // namespace
 
-NetworkTrace parse_network_trace(const json& document, const std::string& where,
-                                 double period_s) {
+NetworkTrace episode_network_trace(const episode::Episode& episode, double period_s) {
+  check_period(period_s, episode.where() + ": ");
+  if (episode.turn_count() == 0) throw InputError(episode.where() + ": /dialogue: the trace has no points");
+  NetworkTrace trace;
+  trace.last_hold_us = to_us(period_s);
+  for (std::size_t i = 0; i < episode.turn_count(); ++i) {
+    TracePoint point;
+    point.state = parse_vector(json(episode.net(i)), episode.turn_where(i) + "/net");
+    point.t_us = to_us(static_cast<double>(i) * period_s);
+    trace.points.push_back(point);
+  }
+  return trace;
+}
+
+NetworkTrace parse_network_trace(const json& document, const std::string& where, double period_s) {
   const json* points = &document;
   std::string points_where = where;
-  bool episode = false;
   if (document.is_object()) {
+    if (document.contains("period_s")) period_s = common::require_number(document, "period_s", where);
     if (document.contains("dialogue")) {
-      points = &common::require_array(document, "dialogue", where);
-      points_where = where + "/dialogue";
-      episode = true;
-    } else {
-      points = &common::require_array(document, "trace", where);
-      points_where = where + "/trace";
+      const std::string file = where.size() >= 2 && where.compare(where.size() - 2, 2, ": ") == 0
+                                   ? where.substr(0, where.size() - 2) : where;
+      return episode_network_trace(episode::Episode(episode::Document(document), file), period_s);
     }
-    if (document.contains("period_s")) {
-      period_s = common::require_number(document, "period_s", where);
-    }
+    points = &common::require_array(document, "trace", where);
+    points_where = where + "/trace";
   } else if (!document.is_array()) {
     throw InputError(problem(where, "expected a list of n_t points, an object with \"trace\", or an "
                                     "α³-Bench episode; got " + std::string(document.type_name())));
   }
-  if (!(period_s > 0.0) || !std::isfinite(period_s)) {
-    throw InputError(problem(where, "the trace period must be a positive number of seconds"));
-  }
+  check_period(period_s, where);
   if (points->empty()) throw InputError(problem(points_where, "the trace has no points"));
 
   NetworkTrace trace;
@@ -93,19 +106,11 @@ NetworkTrace parse_network_trace(const json& document, const std::string& where,
     const std::string at = points_where + "/" + std::to_string(i);
     const json& item = (*points)[i];
     TracePoint point;
-    if (episode) {
-      point.state = parse_vector(common::require_object(item, "net", at), at + "/net");
-      point.t_us = to_us(static_cast<double>(i) * period_s);
-    } else {
-      point.state = parse_vector(item, at);
-      const bool has_time = item.contains("t_s");
-      if (timed && *timed != has_time) {
-        throw InputError(at + ": \"t_s\" must be on every point or on none");
-      }
-      timed = has_time;
-      point.t_us = has_time ? to_us(checked(item, "t_s", at, 0.0, HUGE_VAL, false))
-                            : to_us(static_cast<double>(i) * period_s);
-    }
+    point.state = parse_vector(item, at);
+    const bool has_time = item.contains("t_s");
+    if (timed && *timed != has_time) throw InputError(at + ": \"t_s\" must be on every point or on none");
+    timed = has_time;
+    point.t_us = has_time ? to_us(checked(item, "t_s", at, 0.0, HUGE_VAL, false)) : to_us(static_cast<double>(i) * period_s);
     if (!trace.points.empty() && point.t_us <= trace.points.back().t_us) {
       throw InputError(at + "/t_s: times must increase (previous point at " +
                        std::to_string(trace.points.back().t_us * 1e-6) + " s)");

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "episode/episode.hpp"
 #include "linkemu/network_state.hpp"
 
 namespace a3::linkemu {
@@ -37,6 +38,8 @@ inline constexpr double kDefaultTracePeriodS = 5.0;
 // in the document wins. Throws common::InputError naming `where`, the point and the field.
 NetworkTrace parse_network_trace(const nlohmann::json& document, const std::string& where,
                                  double period_s = kDefaultTracePeriodS);
+// The "net" vector of each dialogue turn of an episode, turn i at i · period_s.
+NetworkTrace episode_network_trace(const episode::Episode& episode, double period_s = kDefaultTracePeriodS);
 NetworkTrace load_network_trace(const std::filesystem::path& path,
                                 double period_s = kDefaultTracePeriodS);
 

@@ -1,33 +1,26 @@
 // Replaying recorded agent turns.
 #include "agent/conversation/replay_agent.hpp"
 
-#include "common/json_file.hpp"
+#include "common/json_file.hpp"  // InputError
 
 namespace a3::agent {
 
 ReplayAgent ReplayAgent::from_file(const std::filesystem::path& file) {
-  return ReplayAgent(common::load_json_file(file), file.string());
+  return ReplayAgent(episode::Episode::load(file));
 }
 
-ReplayAgent::ReplayAgent(const nlohmann::json& episode, const std::string& where) {
-  const auto& dialogue = common::require_array(episode, "dialogue", where);
-  for (std::size_t i = 0; i < dialogue.size(); ++i) {
-    const auto& t = dialogue[i];
-    const std::string w = where + "/dialogue/" + std::to_string(i);
-    if (common::require_string(t, "speaker", w) != "agent") continue;
-    common::require_array(t, "actions", w);
-    turns_.push_back(t);
+ReplayAgent::ReplayAgent(const episode::Episode& episode) {
+  for (const std::size_t i : episode.turns_of("agent")) {
+    episode.actions(i);  // every replayed turn has its actions (an InputError naming it if not)
+    turns_.emplace_back(episode.turn(i));
   }
-  if (turns_.empty()) throw common::InputError(where + ": the episode has no agent turn to replay");
-  if (episode.contains("_meta") && episode["_meta"].is_object()) {
-    const auto& meta = episode["_meta"];
-    const double gen_s = common::number_or(meta, "gen_time_s", 0.0, where + "/_meta");
-    latency_per_turn_s_ = gen_s / static_cast<double>(turns_.size());
-    if (meta.contains("usage") && meta["usage"].is_object()) {
-      for (const char* key : {"prompt_tokens", "completion_tokens", "total_tokens"}) {
-        const double v = common::number_or(meta["usage"], key, 0.0, where + "/_meta/usage");
-        usage_per_turn_[key] = static_cast<int64_t>(v / static_cast<double>(turns_.size()));
-      }
+  if (turns_.empty()) throw common::InputError(episode.where() + ": the episode has no agent turn to replay");
+  const episode::EpisodeMeta meta = episode.meta();
+  const auto turns = static_cast<double>(turns_.size());
+  latency_per_turn_s_ = meta.gen_time_s.value_or(0.0) / turns;
+  if (meta.usage) {
+    for (const char* key : {"prompt_tokens", "completion_tokens", "total_tokens"}) {
+      usage_per_turn_[key] = static_cast<int64_t>(static_cast<double>(meta.usage_count(key)) / turns);
     }
   }
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "agent/conversation/agent.hpp"
+#include "episode/episode.hpp"
 
 namespace a3::agent {
 
@@ -17,7 +18,7 @@ class ReplayAgent final : public Agent {
  public:
   // Throws common::InputError naming the file and field when it is not a usable episode.
   static ReplayAgent from_file(const std::filesystem::path& episode_file);
-  ReplayAgent(const nlohmann::json& episode, const std::string& where);
+  explicit ReplayAgent(const episode::Episode& episode);
 
   std::string name() const override { return "replay"; }
   AgentDecision decide(const AgentContext& context) override;

@@ -7,13 +7,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <tuple>
 
 #include "agent/llm/json_extract.hpp"
 #include "common/json_text.hpp"
+#include "episode/episode.hpp"
 
 namespace a3::agent::model_server {
 namespace {
@@ -22,7 +21,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using nlohmann::ordered_json;
 
-constexpr std::uintmax_t kMaxEpisodeBytes = 16u << 20;
 constexpr int kStubAttempts = 3;  // a stub records that every attempt of the protocol failed
 
 // sc-XXXX-ep-YY.json → (XXXX, YY).
@@ -39,78 +37,60 @@ std::optional<std::pair<int, int>> episode_numbers(const std::string& name) {
   return std::make_pair(scenario, episode);
 }
 
-std::string read_text(const fs::path& path) {
-  std::error_code ec;
-  const auto size = fs::file_size(path, ec);
-  if (ec) throw std::invalid_argument(path.string() + ": cannot read (" + ec.message() + ")");
-  if (size > kMaxEpisodeBytes) throw std::invalid_argument(path.string() + ": larger than 16 MiB");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::invalid_argument(path.string() + ": cannot open");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+// A failure stub: the paper's seed of its file's episode index, the recorded error.
+void read_stub(RecordedEpisode& e, const episode::EpisodeMeta& meta) {
+  const auto seed = paper_episode_seed(e.episode_index);
+  if (!seed) {
+    throw std::invalid_argument(e.file + ": a failure stub (no _meta.seed) with episode index " +
+                                std::to_string(e.episode_index) + " beyond the paper's five seeds");
+  }
+  e.seed = *seed;
+  e.error = meta.error.value_or("generation failed");
+  e.attempts_used = kStubAttempts;
 }
 
-int64_t count_of(const json& usage, const char* key) {
-  const auto it = usage.find(key);
-  if (it == usage.end() || !it->is_number()) return 0;
-  return it->is_number_float() ? static_cast<int64_t>(std::llround(it->get<double>())) : it->get<int64_t>();
+// A recorded episode: its seed, generation time, attempts and usage, and its text without _meta.
+void read_recorded(RecordedEpisode& e, const episode::Episode& episode, const episode::EpisodeMeta& meta) {
+  if (!meta.seed) throw std::invalid_argument(e.file + ": _meta.seed missing");
+  e.seed = *meta.seed;
+  if (!meta.gen_time_s || *meta.gen_time_s < 0.0) {
+    throw std::invalid_argument(e.file + ": _meta.gen_time_s missing or negative");
+  }
+  e.gen_time_s = *meta.gen_time_s;
+  if (meta.attempts_used) {
+    if (*meta.attempts_used < 1.0) throw std::invalid_argument(e.file + ": _meta.attempts_used must be a number >= 1");
+    e.attempts_used = static_cast<int>(*meta.attempts_used);
+  }
+  if (!meta.usage) throw std::invalid_argument(e.file + ": _meta.usage missing");
+  e.usage = *meta.usage;
+  e.content = episode.without_meta().dump(-1, ' ', false, ordered_json::error_handler_t::replace);
+}
+
+RecordedEpisode recorded_episode(const episode::Episode& episode, int scenario, int episode_index) {
+  const episode::EpisodeMeta meta = episode.meta();
+  if (!meta.present) throw std::invalid_argument(episode.where() + ": no _meta object");
+  const episode::Document* initial_state = episode.initial_state();
+  if (initial_state == nullptr) throw std::invalid_argument(episode.where() + ": no initial_state object");
+  RecordedEpisode e;
+  e.file = episode.where();
+  e.scenario = scenario;
+  e.episode_index = episode_index;
+  e.generation_failed = meta.generation_failed;
+  e.initial_state = canonical_initial_state(json(*initial_state));
+  if (e.generation_failed) {
+    read_stub(e, meta);
+  } else {
+    read_recorded(e, episode, meta);
+  }
+  return e;
 }
 
 RecordedEpisode read_episode(const fs::path& path, int scenario, int episode_index) {
-  const std::string where = path.string();
-  ordered_json doc;
   try {
-    doc = common::parse_ordered_json_text(read_text(path), where);
+    return recorded_episode(episode::Episode::load(path), scenario, episode_index);
   } catch (const common::InputError& e) {
     throw std::invalid_argument(e.what());
   }
-  if (!doc.is_object()) throw std::invalid_argument(where + ": not a JSON object");
-  const auto meta = doc.find("_meta");
-  if (meta == doc.end() || !meta->is_object()) throw std::invalid_argument(where + ": no _meta object");
-  if (!doc.contains("initial_state") || !doc["initial_state"].is_object()) {
-    throw std::invalid_argument(where + ": no initial_state object");
-  }
-  RecordedEpisode e;
-  e.file = where;
-  e.scenario = scenario;
-  e.episode_index = episode_index;
-  e.generation_failed = meta->value("generation_failed", false);
-  e.initial_state = canonical_initial_state(json::parse(doc["initial_state"].dump()));
-  if (e.generation_failed) {
-    const auto seed = paper_episode_seed(episode_index);
-    if (!seed) {
-      throw std::invalid_argument(where + ": a failure stub (no _meta.seed) with episode index " +
-                                  std::to_string(episode_index) + " beyond the paper's five seeds");
-    }
-    e.seed = *seed;
-    e.error = meta->contains("error") && (*meta)["error"].is_string() ? (*meta)["error"].get<std::string>()
-                                                                       : "generation failed";
-    e.attempts_used = kStubAttempts;
-  } else {
-    const auto seed = meta->find("seed");
-    if (seed == meta->end() || !seed->is_number()) throw std::invalid_argument(where + ": _meta.seed missing");
-    e.seed = seed->is_number_float() ? static_cast<int64_t>(seed->get<double>()) : seed->get<int64_t>();
-    const auto gen = meta->find("gen_time_s");
-    if (gen == meta->end() || !gen->is_number() || gen->get<double>() < 0.0) {
-      throw std::invalid_argument(where + ": _meta.gen_time_s missing or negative");
-    }
-    e.gen_time_s = gen->get<double>();
-    const auto attempts = meta->find("attempts_used");
-    if (attempts != meta->end()) {
-      if (!attempts->is_number() || attempts->get<double>() < 1.0) {
-        throw std::invalid_argument(where + ": _meta.attempts_used must be a number >= 1");
-      }
-      e.attempts_used = static_cast<int>(attempts->get<double>());
-    }
-    const auto usage = meta->find("usage");
-    if (usage == meta->end() || !usage->is_object()) throw std::invalid_argument(where + ": _meta.usage missing");
-    e.usage = json::parse(usage->dump());
-    ordered_json body = doc;
-    body.erase("_meta");
-    e.content = body.dump(-1, ' ', false, ordered_json::error_handler_t::replace);
-  }
-  return e;
 }
 
 // The value after `label` on the last line of the system and user messages that carries it.
@@ -275,7 +255,7 @@ ResponderReply CorpusResponder::respond(const json& request) {
     reply.usage = e.usage;
   }
   for (const char* key : {"prompt_tokens", "completion_tokens", "total_tokens"}) {
-    reply.usage[key] = share(count_of(e.usage, key), k, index);
+    reply.usage[key] = share(episode::usage_count(e.usage, key), k, index);
   }
   return reply;
 }

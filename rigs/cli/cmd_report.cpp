@@ -57,13 +57,12 @@ fs::path default_output(const fs::path& episode, const fs::path& shared) {
 
 int run_report(const ReportArgs& args) {
   const fs::path episode_path = episode_file(args.input);
-  const nlohmann::json episode = common::load_json_file(episode_path);
-  if (!episode.is_object()) throw common::InputError(episode_path.string() + ": an episode must be a JSON object");
+  const episode::Episode episode = episode::Episode::load(episode_path);
   const fs::path shared = args.shared_dir.empty() ? default_shared_dir() : fs::path(args.shared_dir);
   const std::optional<Scenario> scenario =
       args.scenario.empty() ? scenario_of_episode(episode, shared) : std::optional<Scenario>(load_scenario_spec(args.scenario, shared));
   const fs::path out = args.out.empty() ? default_output(episode_path, shared) : fs::path(args.out);
-  write_episode_report(out, episode, scenario, episode_path.string());
+  write_episode_report(out, nlohmann::json(episode.document()), scenario, episode_path.string());
   std::cout << "report: " << out.string() << (scenario ? "" : " (no scenario found: the map shows no world)") << "\n";
   return 0;
 }

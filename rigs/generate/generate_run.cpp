@@ -15,6 +15,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/json_text.hpp"
+#include "episode/episode.hpp"
 #include "eval/episode_schema.hpp"
 #include "eval/json_schema_validator.hpp"
 #include "eval/json_shape.hpp"
@@ -31,16 +32,13 @@ struct Task {
   fs::path path;
 };
 
-// `_meta.seed` of an existing episode file, if it has one.
+// `_meta.seed` of an existing episode file, if it is an episode with one.
 std::optional<int64_t> recorded_seed(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  const nlohmann::json doc = common::try_parse_json_text(text.str(), nullptr, eval::episode_json_limits()).value_or(nlohmann::json());
-  if (!doc.is_object() || !doc.contains("_meta") || !doc["_meta"].is_object()) return {};
-  const auto& seed = doc["_meta"].value("seed", nlohmann::json());
-  if (!seed.is_number()) return {};
-  return seed.is_number_float() ? static_cast<int64_t>(seed.get<double>()) : seed.get<int64_t>();
+  try {
+    return episode::Episode::load(path).meta().seed;
+  } catch (const common::InputError&) {
+    return {};
+  }
 }
 
 // Temporary files an interrupted run left behind: sc-XXXX-ep-YY.json.tmp-PID (common/atomic_file),

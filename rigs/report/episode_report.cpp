@@ -83,17 +83,18 @@ std::filesystem::path d3_script_path() {
   return "/usr/share/javascript/d3/d3.min.js";
 }
 
-std::optional<Scenario> scenario_of_episode(const nlohmann::json& episode, const std::filesystem::path& shared_dir) {
-  const nlohmann::json rig = episode.value("_rig", nlohmann::json::object());
+std::optional<Scenario> scenario_of_episode(const episode::Episode& episode, const std::filesystem::path& shared_dir) {
+  const episode::Document no_rig = episode::Document::object();
+  const episode::Document& rig = episode.rig() != nullptr ? *episode.rig() : no_rig;
   const std::string source = rig.value("scenario_source", "");
   std::error_code ec;
   if (source.rfind("gen:", 0) == 0 || (!source.empty() && std::filesystem::is_regular_file(source, ec))) {
     if (auto s = try_load(source, shared_dir)) return s;
   }
   if (const std::string name = rig.value("scenario", ""); builtin_scenario_json(name)) return try_load(name, shared_dir);
-  if (episode.contains("initial_state")) {
+  if (const episode::Document* initial_state = episode.initial_state()) {
     try {
-      return scenario_from_initial_state(episode["initial_state"], "episode");
+      return scenario_from_initial_state(nlohmann::json(*initial_state), "episode");
     } catch (const std::exception&) {
     }
   }

@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 
+#include "episode/episode.hpp"
 #include "rigs/scenario/scenario.hpp"
 
 namespace a3::rigs {
@@ -22,7 +23,7 @@ std::filesystem::path d3_script_path();
 // The scenario an episode was flown in, when it can be found: the `gen:` spec or scenario file
 // it names (_rig.scenario_source), its built-in scenario (_rig.scenario), or a corpus episode's
 // initial_state (geofence and envelope only). Nothing when none of these works.
-std::optional<Scenario> scenario_of_episode(const nlohmann::json& episode, const std::filesystem::path& shared_dir);
+std::optional<Scenario> scenario_of_episode(const episode::Episode& episode, const std::filesystem::path& shared_dir);
 
 // The page. Throws common::InputError when d3 cannot be read (naming the file and the package).
 std::string episode_report_html(const nlohmann::json& episode, const std::optional<Scenario>& scenario,

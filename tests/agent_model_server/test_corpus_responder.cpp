@@ -152,6 +152,13 @@ TEST(CorpusResponder, BadFoldersAreNamed) {
   std::ofstream(empty / "sc-0001-ep-00.json") << "{\"initial_state\": {}, \"_meta\": {\"seed\": 42}}";
   try {
     ms::make_corpus_responder({empty.string()});
+    FAIL() << "no error for an episode without a dialogue";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("sc-0001-ep-00.json: /dialogue: missing"), std::string::npos) << e.what();
+  }
+  std::ofstream(empty / "sc-0001-ep-00.json") << "{\"initial_state\": {}, \"dialogue\": [], \"_meta\": {\"seed\": 42}}";
+  try {
+    ms::make_corpus_responder({empty.string()});
     FAIL() << "no error for an episode without gen_time_s";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("sc-0001-ep-00.json: _meta.gen_time_s"), std::string::npos) << e.what();

@@ -76,7 +76,8 @@ TEST(EpisodeReport, WithoutD3TheErrorNamesTheFileAndThePackage) {
 TEST(EpisodeReport, TheScenarioOfARigEpisodeIsFoundByName) {
   json e = a3::test::make_episode();
   e["_rig"] = {{"scenario", "nfz-detour"}, {"scenario_source", "scenario nfz-detour"}};
-  const auto s = a3::rigs::scenario_of_episode(e, a3::test::shared_dir());
+  const auto s = a3::rigs::scenario_of_episode(a3::episode::Episode(a3::episode::Document(e), "e.json"),
+                                               a3::test::shared_dir());
   ASSERT_TRUE(s.has_value());
   EXPECT_EQ(s->name, "nfz-detour");
 }
