@@ -131,13 +131,7 @@ std::string load_average() {
   return a + " " + b + " " + c;
 }
 
-}  // namespace
-}  // namespace a3::bench
-
-int main(int argc, char** argv) {
-  using namespace a3;
-  using namespace a3::bench;
-  CLI::App app("Real-time jitter and achieved real-time factor of the dynamics node under CPU load.");
+struct Options {
   double duration_s = 60.0;
   double rtf = 1.0;
   int burners = 1;
@@ -145,107 +139,155 @@ int main(int argc, char** argv) {
   std::string url = "udpm://239.255.76.67:7691?ttl=0";
   std::string dump;
   int rt_priority = 0;
-  app.add_option("--duration-s", duration_s, "wall seconds measured, after a 1 s warm-up (default 60)")
+  double warmup_s = 1.0;
+};
+
+void add_options(CLI::App& app, Options& o) {
+  app.add_option("--duration-s", o.duration_s, "wall seconds measured, after a 1 s warm-up (default 60)")
       ->check(CLI::PositiveNumber);
-  app.add_option("--rtf", rtf, "real-time factor (default 1)")->check(CLI::PositiveNumber);
-  app.add_option("--burners", burners, "CPU-burning child processes (default 1)")->check(CLI::Range(0, 16));
-  app.add_option("--integrator", integrator, "rk4 (default), cvode or ode")->check(CLI::IsMember(dynamics::integrator_names()));
-  app.add_option("--lcm-url", url, "LCM URL (default: a port of its own, away from other runs)");
-  app.add_option("--dump", dump, "write each step's lateness (us) and each state's arrival lateness to this CSV");
-  app.add_option("--rt-priority", rt_priority,
+  app.add_option("--rtf", o.rtf, "real-time factor (default 1)")->check(CLI::PositiveNumber);
+  app.add_option("--burners", o.burners, "CPU-burning child processes (default 1)")->check(CLI::Range(0, 16));
+  app.add_option("--integrator", o.integrator, "rk4 (default), cvode or ode")
+      ->check(CLI::IsMember(dynamics::integrator_names()));
+  app.add_option("--lcm-url", o.url, "LCM URL (default: a port of its own, away from other runs)");
+  app.add_option("--dump", o.dump, "write each step's lateness (us) and each state's arrival lateness to this CSV");
+  app.add_option("--rt-priority", o.rt_priority,
                  "run the node threads under SCHED_FIFO at this priority (1-99; default 0: normal)")
       ->check(CLI::Range(0, 99));
-  CLI11_PARSE(app, argc, argv);
+}
 
-  const double warmup_s = 1.0;
-  const double sim_end_s = (duration_s + warmup_s + 0.5) * rtf;
-  dynamics::DynamicsNodeConfig config;
-  config.integrator = dynamics::parse_integrator_kind(integrator);
-  const common::WallClock clock(rtf);
-  dynamics::DynamicsNode dyn(config);
-  FlightControllerNode controller(config.params, patrol_plan(sim_end_s + 1.0));
-  StateArrivals arrivals;
-  common::RealTimeNodeThread arrivals_thread(arrivals, clock, url);
-  arrivals_thread.bus().check_loopback();
-  common::RealTimeNodeThread dyn_thread(dyn, clock, url);
-  common::RealTimeNodeThread controller_thread(controller, clock, url);
+// Threads started after this inherit SCHED_FIFO at `priority`; false (and a message) if refused.
+bool set_fifo_priority(int priority) {
+  sched_param param{};
+  param.sched_priority = priority;
+  if (pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) == 0) return true;
+  std::fprintf(stderr, "bench_dynamics_realtime: cannot set SCHED_FIFO (needs root or CAP_SYS_NICE)\n");
+  return false;
+}
 
-  std::vector<pid_t> burner_pids;
-  for (int i = 0; i < burners; ++i) burner_pids.push_back(spawn_burner());
-  if (rt_priority > 0) {
-    // Threads started from here on inherit the policy; the burners keep the normal one.
-    sched_param param{};
-    param.sched_priority = rt_priority;
-    if (pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) != 0) {
-      std::fprintf(stderr, "bench_dynamics_realtime: cannot set SCHED_FIFO (needs root or CAP_SYS_NICE)\n");
-      for (pid_t pid : burner_pids) kill(pid, SIGKILL);
-      return 1;
-    }
-  }
-  const std::string load_before = load_average();
-  const std::string realtime_before = other_realtime_threads();
-  arrivals_thread.start();
-  dyn_thread.start();
-  controller_thread.start();
-  std::this_thread::sleep_for(std::chrono::duration<double>(duration_s + warmup_s + 0.5));
-  controller_thread.stop_and_join();
-  dyn_thread.stop_and_join();
-  arrivals_thread.stop_and_join();
-  for (pid_t pid : burner_pids) {
+void stop_burners(const std::vector<pid_t>& pids) {
+  for (pid_t pid : pids) {
     kill(pid, SIGKILL);
     waitpid(pid, nullptr, 0);
   }
-  const std::string load_after = load_average();
-  const std::string realtime_after = other_realtime_threads();
+}
 
-  // Step lateness after the warm-up (the executor keeps them in run order).
-  std::vector<double> step_late = dyn_thread.executor().lateness_samples_us();
-  const auto warmup_steps = static_cast<std::size_t>(warmup_s * rtf * config.publish_rate_hz);
-  const auto window_steps = static_cast<std::size_t>(duration_s * rtf * config.publish_rate_hz);
-  if (step_late.size() > warmup_steps + window_steps) step_late.resize(warmup_steps + window_steps);
-  if (step_late.size() > warmup_steps) step_late.erase(step_late.begin(), step_late.begin() + static_cast<long>(warmup_steps));
-  const Percentiles steps = percentiles(step_late);
+// Step lateness after the warm-up, over the measured window (the executor keeps them in run order).
+std::vector<double> measured_step_lateness(std::vector<double> late_us, const Options& o, double rate_hz) {
+  const auto warmup_steps = static_cast<std::size_t>(o.warmup_s * o.rtf * rate_hz);
+  const auto window_steps = static_cast<std::size_t>(o.duration_s * o.rtf * rate_hz);
+  if (late_us.size() > warmup_steps + window_steps) late_us.resize(warmup_steps + window_steps);
+  if (late_us.size() > warmup_steps) late_us.erase(late_us.begin(), late_us.begin() + static_cast<long>(warmup_steps));
+  return late_us;
+}
 
-  const auto all = arrivals.arrivals();
+// The states received inside the measured window of simulated time.
+std::vector<StateArrivals::Arrival> measured_arrivals(const std::vector<StateArrivals::Arrival>& all, const Options& o) {
   std::vector<StateArrivals::Arrival> measured;
   for (const auto& a : all) {
-    if (a.utime_us >= static_cast<int64_t>(warmup_s * rtf * 1e6) &&
-        a.utime_us <= static_cast<int64_t>((warmup_s + duration_s) * rtf * 1e6)) {
+    if (a.utime_us >= static_cast<int64_t>(o.warmup_s * o.rtf * 1e6) &&
+        a.utime_us <= static_cast<int64_t>((o.warmup_s + o.duration_s) * o.rtf * 1e6)) {
       measured.push_back(a);
     }
   }
-  std::vector<double> state_late;
-  for (const auto& a : measured) state_late.push_back((a.mono_ns - clock.mono_ns_at(a.utime_us)) * 1e-3);
-  const Percentiles states = percentiles(state_late);
-  double achieved = 0.0, wall_s = 0.0;
-  if (measured.size() >= 2) {
-    wall_s = (measured.back().mono_ns - measured.front().mono_ns) * 1e-9;
-    achieved = (measured.back().utime_us - measured.front().utime_us) * 1e-6 / wall_s;
-  }
-  if (!dump.empty()) {
-    std::ofstream out(dump);
-    out << "kind,index_or_utime_us,lateness_us\n";
-    for (std::size_t i = 0; i < step_late.size(); ++i) out << "step," << i << ',' << step_late[i] << '\n';
-    for (const auto& a : measured) out << "state," << a.utime_us << ',' << (a.mono_ns - clock.mono_ns_at(a.utime_us)) * 1e-3 << '\n';
-  }
-  const double expected_states = duration_s * rtf * config.publish_rate_hz + 1;
+  return measured;
+}
 
+void write_dump(const std::string& path, const std::vector<double>& step_late,
+                const std::vector<StateArrivals::Arrival>& measured, const common::WallClock& clock) {
+  std::ofstream out(path);
+  out << "kind,index_or_utime_us,lateness_us\n";
+  for (std::size_t i = 0; i < step_late.size(); ++i) out << "step," << i << ',' << step_late[i] << '\n';
+  for (const auto& a : measured) out << "state," << a.utime_us << ',' << (a.mono_ns - clock.mono_ns_at(a.utime_us)) * 1e-3 << '\n';
+}
+
+// What the run saw, for the report.
+struct Run {
+  std::string load_before, load_after, realtime_before, realtime_after;
+  Percentiles steps, states;
+  double achieved = 0.0, wall_s = 0.0, expected_states = 0.0, rate_hz = 0.0, final_z_m = 0.0;
+  std::string counters;
+};
+
+void print_report(const Options& o, const Run& r) {
   std::printf("dynamics node in real time: %s integrator, %.0f Hz, real-time factor %g, patrol flight under its\n"
               "controller (own thread), LCM %s; %d CPU-burning child process(es); %.0f s measured after %.0f s\n"
               "warm-up; load average before %s, after %s; %u cores; node threads %s\n",
-              integrator.c_str(), config.publish_rate_hz, rtf, url.c_str(), burners, duration_s, warmup_s,
-              load_before.c_str(), load_after.c_str(), std::thread::hardware_concurrency(),
-              rt_priority > 0 ? ("SCHED_FIFO " + std::to_string(rt_priority)).c_str() : "SCHED_OTHER");
+              o.integrator.c_str(), r.rate_hz, o.rtf, o.url.c_str(), o.burners, o.duration_s, o.warmup_s,
+              r.load_before.c_str(), r.load_after.c_str(), std::thread::hardware_concurrency(),
+              o.rt_priority > 0 ? ("SCHED_FIFO " + std::to_string(o.rt_priority)).c_str() : "SCHED_OTHER");
   std::printf("other processes' SCHED_FIFO/RR threads (they preempt this run): before %s; after %s\n",
-              realtime_before.c_str(), realtime_after.c_str());
+              r.realtime_before.c_str(), r.realtime_after.c_str());
   std::printf("%-36s %9s %9s %9s %8s %9s\n", "lateness against the schedule", "p50 us", "p99 us", "max us", "n", "> 1 ms");
-  std::printf("%-36s %9.0f %9.0f %9.0f %8zu %9zu\n", "dynamics step start (executor)", steps.p50, steps.p99, steps.max,
-              steps.count, steps.over_1ms);
-  std::printf("%-36s %9.0f %9.0f %9.0f %8zu %9zu\n", "state received by another thread", states.p50, states.p99,
-              states.max, states.count, states.over_1ms);
+  std::printf("%-36s %9.0f %9.0f %9.0f %8zu %9zu\n", "dynamics step start (executor)", r.steps.p50, r.steps.p99,
+              r.steps.max, r.steps.count, r.steps.over_1ms);
+  std::printf("%-36s %9.0f %9.0f %9.0f %8zu %9zu\n", "state received by another thread", r.states.p50, r.states.p99,
+              r.states.max, r.states.count, r.states.over_1ms);
   std::printf("achieved real-time factor: %.5f (%.3f simulated s in %.3f wall s; %zu of %.0f states received)\n",
-              achieved, achieved * wall_s, wall_s, states.count, expected_states);
-  std::printf("node counters: %s; final z %.1f m\n", common::to_text(dyn.counters()).c_str(),
-              all.empty() ? 0.0 : all.back().z_m);
+              r.achieved, r.achieved * r.wall_s, r.wall_s, r.states.count, r.expected_states);
+  std::printf("node counters: %s; final z %.1f m\n", r.counters.c_str(), r.final_z_m);
+}
+
+}  // namespace
+}  // namespace a3::bench
+
+int main(int argc, char** argv) {
+  using namespace a3;
+  using namespace a3::bench;
+  CLI::App app("Real-time jitter and achieved real-time factor of the dynamics node under CPU load.");
+  Options o;
+  add_options(app, o);
+  CLI11_PARSE(app, argc, argv);
+
+  const double sim_end_s = (o.duration_s + o.warmup_s + 0.5) * o.rtf;
+  dynamics::DynamicsNodeConfig config;
+  config.integrator = dynamics::parse_integrator_kind(o.integrator);
+  const common::WallClock clock(o.rtf);
+  dynamics::DynamicsNode dyn(config);
+  FlightControllerNode controller(config.params, patrol_plan(sim_end_s + 1.0));
+  StateArrivals arrivals;
+  common::RealTimeNodeThread arrivals_thread(arrivals, clock, o.url);
+  arrivals_thread.bus().check_loopback();
+  common::RealTimeNodeThread dyn_thread(dyn, clock, o.url);
+  common::RealTimeNodeThread controller_thread(controller, clock, o.url);
+
+  std::vector<pid_t> burner_pids;
+  for (int i = 0; i < o.burners; ++i) burner_pids.push_back(spawn_burner());
+  if (o.rt_priority > 0 && !set_fifo_priority(o.rt_priority)) {  // the burners keep the normal policy
+    stop_burners(burner_pids);
+    return 1;
+  }
+  Run r;
+  r.load_before = load_average();
+  r.realtime_before = other_realtime_threads();
+  arrivals_thread.start();
+  dyn_thread.start();
+  controller_thread.start();
+  std::this_thread::sleep_for(std::chrono::duration<double>(o.duration_s + o.warmup_s + 0.5));
+  controller_thread.stop_and_join();
+  dyn_thread.stop_and_join();
+  arrivals_thread.stop_and_join();
+  stop_burners(burner_pids);
+  r.load_after = load_average();
+  r.realtime_after = other_realtime_threads();
+
+  r.rate_hz = config.publish_rate_hz;
+  const std::vector<double> step_late =
+      measured_step_lateness(dyn_thread.executor().lateness_samples_us(), o, config.publish_rate_hz);
+  r.steps = percentiles(step_late);
+  const auto all = arrivals.arrivals();
+  const std::vector<StateArrivals::Arrival> measured = measured_arrivals(all, o);
+  std::vector<double> state_late;
+  for (const auto& a : measured) state_late.push_back((a.mono_ns - clock.mono_ns_at(a.utime_us)) * 1e-3);
+  r.states = percentiles(state_late);
+  if (measured.size() >= 2) {
+    r.wall_s = (measured.back().mono_ns - measured.front().mono_ns) * 1e-9;
+    r.achieved = (measured.back().utime_us - measured.front().utime_us) * 1e-6 / r.wall_s;
+  }
+  if (!o.dump.empty()) write_dump(o.dump, step_late, measured, clock);
+  r.expected_states = o.duration_s * o.rtf * config.publish_rate_hz + 1;
+  r.counters = common::to_text(dyn.counters());
+  r.final_z_m = all.empty() ? 0.0 : all.back().z_m;
+  print_report(o, r);
   return 0;
 }
