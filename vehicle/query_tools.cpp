@@ -5,6 +5,7 @@
 #include <limits>
 #include <set>
 
+#include "common/text_format.hpp"
 #include "vehicle/observation_json.hpp"
 #include "vehicle/vehicle_tools.hpp"
 #include "vehicle/wind_reports.hpp"
@@ -117,6 +118,10 @@ nlohmann::json nearest_zone_json(const Airspace& air, const Eigen::Vector3d& p) 
   return nearest;
 }
 
+// Below this the vehicle's own position is on the ground, where the altitude envelope does not
+// apply yet (the airspace monitor counts a vehicle airborne above 0.3 m).
+constexpr double kOnGroundBelowM = 0.3;
+
 void check_geofence(VehicleServices& vehicle, const nlohmann::json& args) {
   const auto here = vehicle.position();
   const bool all_given = args.contains("x") && args.contains("y") && args.contains("z");
@@ -126,11 +131,15 @@ void check_geofence(VehicleServices& vehicle, const nlohmann::json& args) {
   const auto coord = [&](const char* key, int k) { return args.contains(key) ? args[key].get<double>() : (*here)[k]; };
   const Eigen::Vector3d p(coord("x", 0), coord("y", 1), coord("z", 2));
   const Airspace& air = vehicle.config().airspace;
+  // The vehicle's own altitude on the ground (the pre-flight check): the envelope applies once
+  // airborne, so the answer is about the column it takes off into, at the envelope's floor.
+  const bool on_ground = !args.contains("z") && p.z() < kOnGroundBelowM;
+  const Eigen::Vector3d judged(p.x(), p.y(), on_ground ? std::max(p.z(), air.min_altitude_m) : p.z());
   const Eigen::Vector2d xy = p.head<2>();
   const bool inside = air.inside_geofence(xy);
-  const bool altitude_ok = air.altitude_ok(p.z());
-  const NoFlyZone* in_zone = air.zone_containing(p);
-  const std::string gate_reason = vehicle.gate().check_target(p, "point");
+  const bool altitude_ok = air.altitude_ok(judged.z());
+  const NoFlyZone* in_zone = air.zone_containing(judged);
+  const std::string gate_reason = vehicle.gate().check_target(judged, "point");
   const char* status = in_zone != nullptr ? "in_no_fly_zone"
                        : !inside          ? "outside_geofence"
                        : !altitude_ok     ? "outside_altitude_envelope"
@@ -143,8 +152,13 @@ void check_geofence(VehicleServices& vehicle, const nlohmann::json& args) {
                            {"alt_bounds", {finite_or_null(air.min_altitude_m, 1), finite_or_null(air.max_altitude_m, 1)}},
                            {"nfz_violation", in_zone != nullptr},
                            {"in_zone", in_zone != nullptr ? nlohmann::json(in_zone->id) : nlohmann::json(nullptr)},
-                           {"nearest_nfz", nearest_zone_json(air, p)},
+                           {"nearest_nfz", nearest_zone_json(air, judged)},
                            {"flyable", gate_reason.empty()}};
+  if (on_ground) {
+    result["on_ground"] = true;
+    result["note"] = "On the ground: the altitude envelope applies once airborne; judged for a take-off here, at " +
+                     common::formatted("%.1f m", judged.z()) + ".";
+  }
   if (!gate_reason.empty()) result["why_not_flyable"] = gate_reason;
   vehicle.finish_mcp(result);
 }

@@ -64,11 +64,28 @@ TEST(ToolServerQueries, ReadTelemetryBeforeAnyStatusSaysSo) {
   EXPECT_NE(r["error"].get<std::string>().find("no telemetry"), std::string::npos);
 }
 
+// The pre-flight check on the ground: the altitude envelope applies once airborne, so the vehicle's
+// own position on the ground is judged for a take-off into the envelope there, and says so.
+TEST(ToolServerQueries, CheckGeofenceOnTheGroundJudgesTheTakeOffColumn) {
+  Rig rig;
+  const auto ground = rig.result(mcp("check_geofence"));
+  EXPECT_EQ(ground["status"], "inside_geofence") << ground.dump();
+  EXPECT_EQ(ground["on_ground"], true);
+  EXPECT_EQ(ground["altitude_ok"], true);
+  EXPECT_EQ(ground["flyable"], true) << ground.dump();
+  EXPECT_NE(ground["note"].get<std::string>().find("at 10.0 m"), std::string::npos) << ground.dump();
+  // A point given with its altitude is judged as given, on the ground or not.
+  const auto given = rig.result(mcp("check_geofence", {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}}));
+  EXPECT_EQ(given["status"], "outside_altitude_envelope") << given.dump();
+  EXPECT_FALSE(given.contains("on_ground"));
+}
+
 TEST(ToolServerQueries, CheckGeofenceForAPointAndForTheCurrentPosition) {
   Rig rig;
   rig.take_off(30.0);
   const auto here = rig.result(mcp("check_geofence"));
   EXPECT_EQ(here["status"], "inside_geofence") << here.dump();
+  EXPECT_FALSE(here.contains("on_ground")) << "airborne";
   EXPECT_DOUBLE_EQ(here["point"]["z"].get<double>(), 30.0);
   EXPECT_DOUBLE_EQ(here["distance_to_boundary_m"].get<double>(), 20.0);
   EXPECT_EQ(here["flyable"], true);
