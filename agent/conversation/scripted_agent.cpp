@@ -109,6 +109,23 @@ std::string motion_answer(const Turn& t) {
   return "accepted";
 }
 
+// The first failed answer to the sensor actions of a capture turn (activate_sensor,
+// capture_image): "timeout" (lost, or no answer), "error" with its message; empty when they stood.
+std::string capture_failure(const Turn& t) {
+  for (std::size_t i = 0; i < t.actions.size(); ++i) {
+    const std::string name = t.actions[i].value("name", "");
+    if (name != "capture_image" && name != "activate_sensor") continue;
+    const nlohmann::json* o = i < t.obs.size() ? &t.obs[i] : nullptr;
+    const bool answered = o != nullptr && o->is_object() && o->contains("result") && (*o)["result"].is_object();
+    const std::string status = answered ? (*o)["result"].value("status", "") : "timeout";
+    if (status == "timeout") return name + " timed out";
+    if (status == "error") return name + ": " + (*o)["result"].value("error", "error");
+  }
+  return "";
+}
+
+bool capture_failed(const Turn& t) { return !capture_failure(t).empty(); }
+
 // The waypoints of the newest ground-station route asked for to `goal` (horizontally), or empty.
 std::vector<nlohmann::json> planned_route_to(const AgentContext& c, const Eigen::Vector2d& goal) {
   std::vector<nlohmann::json> route;
@@ -331,9 +348,12 @@ ScriptedAgent::Choice ScriptedAgent::preflight_choice(const AgentContext& c) {
 
 ScriptedAgent::Choice ScriptedAgent::after_leg_done(const AgentContext& c, int agent_turns_left) {
   Choice choice;
-  const Leg& done = legs_[leg_];
+  Leg& done = legs_[leg_];
   if (done.capture) {
     choice = {done.capture_intent, done.capture_text, done.capture_actions};
+    ++done.captures;
+    capture_turn_index_ = static_cast<int>(c.dialogue->size());
+    captured_leg_ = leg_;
   }
   ++leg_;
   leg_sent_ = false;
@@ -373,6 +393,21 @@ ScriptedAgent::Choice ScriptedAgent::after_refusal(const AgentContext& c, int ag
   return choice;
 }
 
+std::optional<ScriptedAgent::Choice> ScriptedAgent::retake_failed_capture(const AgentContext& c, int agent_turns_left) {
+  const Turn* sent = turn_at(c, capture_turn_index_);
+  if (sent == nullptr || !capture_failed(*sent) || returned_) return std::nullopt;
+  capture_turn_index_ = -1;
+  Leg& leg = legs_[captured_leg_];
+  // Back to the point, then the capture there with the way home: two agent turns at least.
+  if (leg.captures >= 2 || agent_turns_left < 2) return std::nullopt;
+  leg_ = captured_leg_;
+  leg.sends = 0;
+  Choice choice{"", "The capture at " + leg.objective_id + " was not confirmed (" + capture_failure(*sent) +
+                        "); flying back to take it again.", {}};
+  add_leg_motion(c, &choice);
+  return choice;
+}
+
 ScriptedAgent::Choice ScriptedAgent::next_choice(const AgentContext& c) {
   const int agent_turns_left = (c.max_turns - c.turn_number) / 2 + 1;
   if (!preflight_done_) return preflight_choice(c);
@@ -388,6 +423,7 @@ ScriptedAgent::Choice ScriptedAgent::next_choice(const AgentContext& c) {
     return {first_after ? "confirm_landing" : "status_report",
             first_after ? "Confirming the landing." : "Reporting status.", {mcp("read_telemetry")}};
   }
+  if (auto retake = retake_failed_capture(c, agent_turns_left)) return *retake;
   Choice choice;
   if (leg_ >= legs_.size()) {
     add_return(c, &choice);

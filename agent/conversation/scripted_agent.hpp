@@ -10,7 +10,9 @@
 // rest). A capture needs that evidence; a leg whose command was lost, or that came to rest
 // elsewhere, is sent again; a leg the gate refused gets a route from the ground station (a
 // pattern behind a no-fly zone: a transit along the route first), and is given up after three
-// sends; without evidence it checks telemetry while the turn budget has turns to spare. Turn budgeting folds only what can be done at once: a capture with the next
+// sends; without evidence it checks telemetry while the turn budget has turns to spare. A
+// capture answered timeout or error (lost on the link, a sensor not active) is not claimed: the
+// leg is flown back and captured again, once, when the budget has the two turns it takes. Turn budgeting folds only what can be done at once: a capture with the next
 // leg (capture first, then move on), the last capture with the return, and — when the
 // budget is short — the pre-flight with the launch; never a leg with the capture at its end.
 // It adapts every turn to the network: on a hard link it asks for URLLC and keeps images on
@@ -21,6 +23,7 @@
 
 #include <Eigen/Core>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,6 +53,7 @@ class ScriptedAgent final : public Agent {
     bool transit_planned = false;  // a pattern leg: a transit along a route has been put before it
     bool is_route = false;         // a transit: its motion is a route already
     int sends = 0;                 // times its motion has been sent
+    int captures = 0;              // times its capture has been sent
   };
   // Where the last leg stands, from the evidence in the dialogue.
   enum class LegStatus { kDone, kFlying, kLost, kRefused, kUnknown };
@@ -72,6 +76,9 @@ class ScriptedAgent final : public Agent {
   std::vector<nlohmann::json> route_for(const AgentContext& context, const Leg& leg, const nlohmann::json& motion) const;
   void put_transit_before_pattern(const AgentContext& context);
   Choice after_refusal(const AgentContext& context, int agent_turns_left);
+  // A capture answered timeout or error (the link lost it, or the sensor was not active): the
+  // leg is flown again and captured again, once; nothing when the last capture stands.
+  std::optional<Choice> retake_failed_capture(const AgentContext& context, int agent_turns_left);
   std::vector<nlohmann::json> adapt_to_network(const AgentContext& context, std::vector<nlohmann::json> actions);
 
   bool planned_ = false;
@@ -85,6 +92,8 @@ class ScriptedAgent final : public Agent {
   bool images_held_ = false;     // captures kept on board while the link was poor
   int leg_turn_index_ = -1;      // dialogue index of the turn that sent the current leg
   int return_turn_index_ = -1;   // dialogue index of the turn that sent return_to_home
+  int capture_turn_index_ = -1;  // dialogue index of the turn that sent the last capture
+  std::size_t captured_leg_ = 0; // the leg it captured
 };
 
 // The SPEC §2 "hard" test on an n_t object.

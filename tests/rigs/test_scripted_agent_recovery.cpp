@@ -1,0 +1,109 @@
+// The reference agent's recovery (issue 35): a capture the link lost, or one the sensor refused,
+// is not claimed; the agent flies back to the point and takes it again. The dialogue of a flown
+// bridge-inspection is shown to a fresh scripted agent turn by turn, with the answer to the first
+// capture replaced, and the agent's next decision is read.
+#include <gtest/gtest.h>
+
+#include "agent/conversation/scripted_agent.hpp"
+#include "rigs/run/node_configs.hpp"
+#include "rigs/scenario/scenario.hpp"
+#include "tests/rigs/rig_test_support.hpp"
+
+namespace a3::rigs {
+namespace {
+
+using nlohmann::json;
+
+agent::Turn turn_of(const json& t) {
+  agent::Turn turn;
+  turn.number = t["turn"].get<int>();
+  turn.speaker = t["speaker"].get<std::string>();
+  turn.intent = t.value("intent", "");
+  turn.actions = t.value("actions", json::array());
+  turn.obs = t.value("obs", json::array());
+  turn.net = t.value("net", json::object());
+  return turn;
+}
+
+// The index of the first agent turn that captured an image and moved on in the same turn.
+std::size_t first_capture_turn(const json& dialogue) {
+  for (std::size_t i = 0; i < dialogue.size(); ++i) {
+    bool capture = false, motion = false;
+    for (const auto& a : dialogue[i]["actions"]) {
+      capture = capture || a.value("name", "") == "capture_image";
+      motion = motion || a.value("name", "") == "set_waypoint";
+    }
+    if (capture && motion) return i;
+  }
+  return dialogue.size();
+}
+
+// Shows `dialogue` up to (not including) index `until` to a fresh agent, deciding each agent turn
+// as the rig would; returns the decision for the turn at `until`.
+agent::AgentDecision decide_after(const agent::ConversationConfig& conversation, const std::vector<agent::Turn>& dialogue,
+                                  std::size_t until) {
+  const agent::ToolCatalog& tools = agent::ToolCatalog::builtin();
+  agent::ScriptedAgent scripted;
+  std::vector<agent::Turn> shown;
+  agent::AgentDecision last;
+  for (std::size_t i = 0; i <= until; ++i) {
+    if (dialogue[i].speaker == "agent") {
+      agent::AgentContext c;
+      c.mission = &conversation.mission;
+      c.initial_state = conversation.initial_state;
+      c.airspace = conversation.airspace_brief;
+      c.dialogue = &shown;
+      c.tools = &tools;
+      c.net = dialogue[i].net;
+      c.turn_number = dialogue[i].number;
+      c.max_turns = conversation.max_turns;
+      last = scripted.decide(c);
+    }
+    if (i < until) shown.push_back(dialogue[i]);
+  }
+  return last;
+}
+
+TEST(ScriptedAgentRecovery, ACaptureThatTimedOutIsTakenAgainAtThePoint) {
+  RunOptions o = a3::test::virtual_run("bridge-inspection", "recovery-capture");
+  const RunResult r = a3::test::run(o);
+  ASSERT_EQ(r.status, "completed");
+  const json& recorded = r.episode["dialogue"];
+  const std::size_t capture = first_capture_turn(recorded);
+  ASSERT_LT(capture + 2, recorded.size()) << "bridge-inspection no longer captures pier-1 with the next leg";
+  std::vector<agent::Turn> dialogue;
+  for (const auto& t : recorded) dialogue.push_back(turn_of(t));
+  const RigConfigs configs = make_rig_configs(load_scenario("bridge-inspection", a3::test::shared_dir()), o);
+
+  // As flown: the capture stood, so the next agent turn goes on (no flight back to pier-1).
+  const agent::AgentDecision as_flown = decide_after(configs.conversation, dialogue, capture + 2);
+  EXPECT_EQ(as_flown.text.find("take it again"), std::string::npos) << as_flown.text;
+
+  // The capture's answer lost on the link: the next agent turn flies back to pier-1 to retake it.
+  for (std::size_t i = 0; i < dialogue[capture].actions.size(); ++i) {
+    if (dialogue[capture].actions[i].value("name", "") == "capture_image") {
+      dialogue[capture].obs[i] = {{"tool", "capture_image"}, {"result", {{"status", "timeout"}}}};
+    }
+  }
+  const agent::AgentDecision retake = decide_after(configs.conversation, dialogue, capture + 2);
+  EXPECT_NE(retake.text.find("capture_image timed out"), std::string::npos) << retake.text;
+  const Eigen::Vector2d pier = configs.conversation.mission.objectives.front().point;
+  bool back_to_pier = false;
+  for (const auto& a : retake.actions) {
+    if (a.value("name", "") != "set_waypoint") continue;
+    back_to_pier = std::abs(a["args"]["x"].get<double>() - pier.x()) < 1e-6 && std::abs(a["args"]["y"].get<double>() - pier.y()) < 1e-6;
+  }
+  EXPECT_TRUE(back_to_pier) << retake.actions.dump();
+
+  // And an error answer (the sensor not active) is treated the same way.
+  for (std::size_t i = 0; i < dialogue[capture].actions.size(); ++i) {
+    if (dialogue[capture].actions[i].value("name", "") == "capture_image") {
+      dialogue[capture].obs[i] = {{"tool", "capture_image"}, {"result", {{"status", "error"}, {"error", "rgb is not active"}}}};
+    }
+  }
+  const agent::AgentDecision after_error = decide_after(configs.conversation, dialogue, capture + 2);
+  EXPECT_NE(after_error.text.find("rgb is not active"), std::string::npos) << after_error.text;
+}
+
+}  // namespace
+}  // namespace a3::rigs
