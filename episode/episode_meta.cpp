@@ -26,7 +26,11 @@ std::optional<double> number_at(const Value& meta, const char* key, const std::s
 int64_t usage_count(const nlohmann::json& usage, const char* key) {
   const auto it = usage.find(key);
   if (it == usage.end() || !it->is_number()) return 0;
-  return it->is_number_float() ? static_cast<int64_t>(std::llround(it->get<double>())) : it->get<int64_t>();
+  if (it->is_number_float()) {
+    const double x = it->get<double>();
+    return std::fabs(x) < 9.2e18 ? static_cast<int64_t>(std::llround(x)) : 0;  // beyond int64: no count
+  }
+  return it->get<int64_t>();
 }
 
 int64_t EpisodeMeta::usage_count(const char* key) const { return usage ? episode::usage_count(*usage, key) : 0; }
@@ -41,6 +45,10 @@ EpisodeMeta read_episode_meta(const Value& meta, const std::string& where) {
   if (const auto it = meta.find("error"); it != meta.end() && it->is_string()) m.error = it->get<std::string>();
   if (const auto it = meta.find("seed"); it != meta.end()) {
     if (!it->is_number()) throw InputError(where + "/seed: expected a number, got " + std::string(it->type_name()));
+    // A fraction is truncated; a float beyond int64's range has no integer seed (and casting it is UB).
+    if (it->is_number_float() && !(std::fabs(it->get<double>()) < 9.2e18)) {
+      throw InputError(where + "/seed: out of the 64-bit integer range");
+    }
     m.seed = it->is_number_float() ? static_cast<int64_t>(it->get<double>()) : it->get<int64_t>();
   }
   m.gen_time_s = number_at(meta, "gen_time_s", where);

@@ -3,8 +3,11 @@
 // under both scoring profiles. Invariants: every pillar and α³ lie in [0, 1]; the compiled
 // schema (what scoring validates with) and valijson give the same verdict on every document;
 // the fast parser (simdjson) and the reference parser build the same document from every text
-// simdjson accepts; the a3rig episode label (rig_episode_label) is read or refused, never crashes.
+// simdjson accepts; the a3rig episode label (rig_episode_label) is read or refused, never crashes;
+// the rig's episode model (episode/: what replay, trace replay and the report read) reads every
+// part of the text or refuses it with an InputError, nothing else.
 #include <cstring>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -15,6 +18,8 @@
 #include "eval/json_shape.hpp"
 #include "eval/parser_agreement.hpp"
 #include "eval/pillars.hpp"
+#include "common/json_file.hpp"
+#include "episode/episode.hpp"
 #include "eval/rig_episode_label.hpp"
 #include "fuzz/fuzz_target.hpp"
 
@@ -52,6 +57,31 @@ void require_validators_agree(std::string_view text) {
                     "the compiled schema and valijson disagree");
 }
 
+// Every part episode/ hands out, each read or refused on its own.
+void read_every_part(std::string_view text) {
+  std::optional<a3::episode::Episode> episode;
+  try {
+    episode.emplace(a3::episode::Episode::parse(text, "fuzz"));
+  } catch (const a3::common::InputError&) {
+    return;
+  }
+  const auto refused_or_read = [](auto&& read) {
+    try {
+      read();
+    } catch (const a3::common::InputError&) {
+    }
+  };
+  refused_or_read([&] { (void)episode->meta().usage_count("total_tokens"); });
+  refused_or_read([&] { (void)episode->without_meta(); });
+  (void)episode->rig();
+  (void)episode->initial_state();
+  for (std::size_t i = 0; i < episode->turn_count(); ++i) {
+    refused_or_read([&] { (void)episode->speaker(i); });
+    refused_or_read([&] { (void)episode->actions(i); });
+    refused_or_read([&] { (void)episode->net(i); });
+  }
+}
+
 }  // namespace
 
 A3_FUZZ_TARGET(episode) {
@@ -65,6 +95,7 @@ A3_FUZZ_TARGET(episode) {
   if (check.status == a3::eval::EpisodeStatus::kValid) score_both_profiles(check.facts);
   a3::fuzz::require(check.status != a3::eval::EpisodeStatus::kInvalid || !check.violations.empty(),
                     "an invalid episode without a reason");
+  read_every_part(text);
   // How `a3rig score` names a3rig's own episode.json: a label has both its parts, or none is given.
   if (const auto label = a3::eval::rig_episode_label_from_text(text)) {
     a3::fuzz::require(!label->model.empty() && !label->scenario.empty(), "a rig episode label with an empty part");

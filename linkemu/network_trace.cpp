@@ -52,10 +52,14 @@ NetworkState parse_vector(const json& object, const std::string& where) {
 
 int64_t to_us(double seconds) { return std::llround(seconds * 1e6); }
 
+// A `where` at the top level of a file ends in ": " ("file.json: "); below it, in a path.
+bool is_top_level(const std::string& where) {
+  return where.size() >= 2 && where.compare(where.size() - 2, 2, ": ") == 0;
+}
+
 // "file.json: " + text at the top level, "file.json: /trace: " + text below it.
 std::string problem(const std::string& where, const std::string& text) {
-  const bool top = where.size() >= 2 && where.compare(where.size() - 2, 2, ": ") == 0;
-  return where + (top ? "" : ": ") + text;
+  return where + (is_top_level(where) ? "" : ": ") + text;
 }
 
 void check_period(double period_s, const std::string& where) {
@@ -86,8 +90,7 @@ NetworkTrace parse_network_trace(const json& document, const std::string& where,
   if (document.is_object()) {
     if (document.contains("period_s")) period_s = common::require_number(document, "period_s", where);
     if (document.contains("dialogue")) {
-      const std::string file = where.size() >= 2 && where.compare(where.size() - 2, 2, ": ") == 0
-                                   ? where.substr(0, where.size() - 2) : where;
+      const std::string file = is_top_level(where) ? where.substr(0, where.size() - 2) : where;
       return episode_network_trace(episode::Episode(episode::Document(document), file), period_s);
     }
     points = &common::require_array(document, "trace", where);

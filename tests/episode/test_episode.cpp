@@ -106,6 +106,8 @@ TEST(Episode, ProblemsAreNamedWithFileAndPath) {
   EXPECT_EQ(problem([&] { e.net(1); }), "ep.json: /dialogue/1/net: missing");
   EXPECT_EQ(problem([&] { e.actions(2); }), "ep.json: /dialogue/2/actions: expected an array, got number");
   EXPECT_EQ(problem([&] { e.meta(); }), "ep.json: /_meta/seed: expected a number, got string");
+  EXPECT_EQ(problem([&] { Episode::parse(R"({"dialogue": [], "_meta": {"seed": 1e300}})", "ep.json").meta(); }),
+            "ep.json: /_meta/seed: out of the 64-bit integer range");
   EXPECT_EQ(problem([&] { Episode::parse(R"({"dialogue": [], "_meta": 3})", "ep.json").meta(); }),
             "ep.json: /_meta: expected an object, got number");
 }
