@@ -10,6 +10,8 @@ namespace {
 // Telemetry within these of the commanded altitude and speed counts as "at rest there".
 constexpr double kAltitudeTolerance_m = 3.0;
 constexpr double kRestSpeed_mps = 1.0;
+// Telemetry above this height (armed) shows the vehicle has taken off.
+constexpr double kAirborneAbove_m = 1.0;
 
 nlohmann::json mcp(const std::string& name, nlohmann::json args = nlohmann::json::object()) {
   return {{"type", "mcp"}, {"name", name}, {"args", std::move(args)}};
@@ -96,33 +98,41 @@ const Turn* turn_at(const AgentContext& c, int i) {
   return i >= 0 && i < static_cast<int>(c.dialogue->size()) ? &(*c.dialogue)[i] : nullptr;
 }
 
+// The status answered to the turn's i-th action: "timeout" when it went unanswered (lost).
+std::string answer_status(const Turn& t, std::size_t i) {
+  const nlohmann::json* o = i < t.obs.size() ? &t.obs[i] : nullptr;
+  const bool answered = o != nullptr && o->is_object() && o->contains("result") && (*o)["result"].is_object();
+  return answered ? (*o)["result"].value("status", "") : "timeout";
+}
+
+bool failed(const std::string& status) { return status == "refused" || status == "error" || status == "timeout"; }
+
 // "accepted" when every motion command of the turn was, else the first refusal ("refused",
 // "error") or loss ("timeout", no answer).
 std::string motion_answer(const Turn& t) {
   for (std::size_t i = 0; i < t.actions.size(); ++i) {
     if (!is_motion(t.actions[i])) continue;
-    const nlohmann::json* o = i < t.obs.size() ? &t.obs[i] : nullptr;
-    const bool answered = o != nullptr && o->is_object() && o->contains("result") && (*o)["result"].is_object();
-    const std::string status = answered ? (*o)["result"].value("status", "") : "timeout";
-    if (status == "refused" || status == "error" || status == "timeout") return status;
+    const std::string status = answer_status(t, i);
+    if (failed(status)) return status;
   }
   return "accepted";
 }
 
-// The first failed answer to the sensor actions of a capture turn (activate_sensor,
-// capture_image): "timeout" (lost, or no answer), "error" with its message; empty when they stood.
-std::string capture_failure(const Turn& t) {
+// The first failed answer among the turn's actions named `names`: "<name> timed out" (lost, or
+// no answer), "<name>: <error>" for an error or refusal; empty when they all stood.
+std::string first_failure(const Turn& t, const std::vector<std::string>& names) {
   for (std::size_t i = 0; i < t.actions.size(); ++i) {
     const std::string name = t.actions[i].value("name", "");
-    if (name != "capture_image" && name != "activate_sensor") continue;
-    const nlohmann::json* o = i < t.obs.size() ? &t.obs[i] : nullptr;
-    const bool answered = o != nullptr && o->is_object() && o->contains("result") && (*o)["result"].is_object();
-    const std::string status = answered ? (*o)["result"].value("status", "") : "timeout";
+    if (std::find(names.begin(), names.end(), name) == names.end()) continue;
+    const std::string status = answer_status(t, i);
     if (status == "timeout") return name + " timed out";
-    if (status == "error") return name + ": " + (*o)["result"].value("error", "error");
+    if (failed(status)) return name + ": " + t.obs[i]["result"].value("error", status);
   }
   return "";
 }
+
+// The first failed answer to the sensor actions of a capture turn (activate_sensor, capture_image).
+std::string capture_failure(const Turn& t) { return first_failure(t, {"activate_sensor", "capture_image"}); }
 
 bool capture_failed(const Turn& t) { return !capture_failure(t).empty(); }
 
@@ -183,6 +193,17 @@ bool supervisor_saw_rest(const AgentContext& c) {
   if (c.dialogue->empty()) return false;
   const Turn& t = c.dialogue->back();
   return t.speaker == "user" && (t.intent == "request_status" || t.intent == "confirm_mission_start");
+}
+
+// The take-off sent in the turn at `launch_turn_index` was not confirmed (lost, refused) and no
+// telemetry since shows the vehicle armed and off the ground: it has to be sent again.
+bool launch_unconfirmed(const AgentContext& c, int launch_turn_index) {
+  const Turn* sent = turn_at(c, launch_turn_index);
+  if (sent == nullptr || first_failure(*sent, {"takeoff"}).empty()) return false;
+  int tel_turn = -1;
+  const nlohmann::json* tel = telemetry_after(c, launch_turn_index, &tel_turn);
+  const bool armed = tel != nullptr && tel->contains("armed") && (*tel)["armed"].is_boolean() && (*tel)["armed"].get<bool>();
+  return !(armed && number((*tel)["pose"], "z", 0.0) > kAirborneAbove_m);
 }
 
 ScriptedAgent::LegStatus status_from_telemetry(const nlohmann::json& tel, const ScriptedAgent::Leg& leg) {
@@ -315,9 +336,10 @@ void ScriptedAgent::add_leg_motion(const AgentContext& c, Choice* choice) {
   put_transit_before_pattern(c);
   Leg& leg = legs_[leg_];
   ++leg.sends;
-  if (!launched_) {
+  if (!launched_ || launch_unconfirmed(c, launch_turn_index_)) {
     choice->actions.push_back(mcp("takeoff", {{"altitude_m", c.mission->cruise_altitude_m}}));
     launched_ = true;
+    launch_turn_index_ = static_cast<int>(c.dialogue->size());
   }
   for (const auto& a : leg.actions) {
     auto route = is_motion(a) && !leg.is_route ? route_for(c, leg, a) : std::vector<nlohmann::json>{};
@@ -370,6 +392,14 @@ ScriptedAgent::Choice ScriptedAgent::after_refusal(const AgentContext& c, int ag
   const Leg& leg = legs_[leg_];
   const bool has_zones = c.airspace.contains("no_fly_zones") && !c.airspace["no_fly_zones"].empty();
   leg_sent_ = false;
+  const Turn* sent = turn_at(c, leg_turn_index_);
+  const std::string setup = sent == nullptr ? "" : first_failure(*sent, {"activate_sensor"});
+  if (!setup.empty() && leg.sends < 3) {
+    // Refused for want of its sensor (the activation lost or failed): set it up again with the leg.
+    Choice choice{"", "The leg to " + leg.objective_id + " was not flown (" + setup + "); activating the sensor again with it.", {}};
+    add_leg_motion(c, &choice);
+    return choice;
+  }
   if (has_zones && leg.sends < 3 && planned_route_to(c, leg.anchor_W_m.head<2>()).empty()) {
     // Refused on the way (a no-fly zone): ask the ground station for a route from here; the
     // next turn flies the leg along it.

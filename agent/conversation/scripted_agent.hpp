@@ -12,7 +12,10 @@
 // pattern behind a no-fly zone: a transit along the route first), and is given up after three
 // sends; without evidence it checks telemetry while the turn budget has turns to spare. A
 // capture answered timeout or error (lost on the link, a sensor not active) is not claimed: the
-// leg is flown back and captured again, once, when the budget has the two turns it takes. Turn budgeting folds only what can be done at once: a capture with the next
+// leg is flown back and captured again, once, when the budget has the two turns it takes. A
+// take-off answered timeout or error is sent again with the next leg unless telemetry since shows
+// the vehicle armed in the air; a leg refused for want of a sensor whose activation was lost is
+// sent again with the activation. Turn budgeting folds only what can be done at once: a capture with the next
 // leg (capture first, then move on), the last capture with the return, and — when the
 // budget is short — the pre-flight with the launch; never a leg with the capture at its end.
 // It adapts every turn to the network: on a hard link it asks for URLLC and keeps images on
@@ -91,6 +94,7 @@ class ScriptedAgent final : public Agent {
   bool returned_ = false;        // return_to_home has been sent
   bool images_held_ = false;     // captures kept on board while the link was poor
   int leg_turn_index_ = -1;      // dialogue index of the turn that sent the current leg
+  int launch_turn_index_ = -1;   // dialogue index of the turn that sent the take-off
   int return_turn_index_ = -1;   // dialogue index of the turn that sent return_to_home
   int capture_turn_index_ = -1;  // dialogue index of the turn that sent the last capture
   std::size_t captured_leg_ = 0; // the leg it captured

@@ -1,7 +1,8 @@
 // The reference agent's recovery (issue 35): a capture the link lost, or one the sensor refused,
-// is not claimed; the agent flies back to the point and takes it again. The dialogue of a flown
-// bridge-inspection is shown to a fresh scripted agent turn by turn, with the answer to the first
-// capture replaced, and the agent's next decision is read.
+// is not claimed (the agent flies back to the point and takes it again); a take-off the link lost
+// is sent again; a sensor activation lost before a survey is sent again with the survey. The
+// dialogue of a flown built-in scenario is shown to a fresh scripted agent turn by turn, with the
+// answer that matters replaced, and the agent's next decision is read.
 #include <gtest/gtest.h>
 
 #include "agent/conversation/scripted_agent.hpp"
@@ -36,6 +37,47 @@ std::size_t first_capture_turn(const json& dialogue) {
     if (capture && motion) return i;
   }
   return dialogue.size();
+}
+
+// The index of the first turn with an action named `name`.
+std::size_t first_turn_with(const std::vector<agent::Turn>& dialogue, const std::string& name) {
+  for (std::size_t i = 0; i < dialogue.size(); ++i) {
+    for (const auto& a : dialogue[i].actions) {
+      if (a.value("name", "") == name) return i;
+    }
+  }
+  return dialogue.size();
+}
+
+// Replaces the answer to every action named `name` in `turn`.
+void replace_answer(agent::Turn* turn, const std::string& name, const json& result) {
+  for (std::size_t i = 0; i < turn->actions.size() && i < turn->obs.size(); ++i) {
+    if (turn->actions[i].value("name", "") == name) turn->obs[i] = {{"tool", name}, {"result", result}};
+  }
+}
+
+std::vector<std::string> names_of(const json& actions) {
+  std::vector<std::string> names;
+  for (const auto& a : actions) names.push_back(a.value("name", a.value("task", "")));
+  return names;
+}
+
+bool has(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+struct Flown {
+  std::vector<agent::Turn> dialogue;
+  RigConfigs configs;
+};
+
+Flown fly(const std::string& scenario) {
+  RunOptions o = a3::test::virtual_run(scenario, "recovery-" + scenario);
+  const RunResult r = a3::test::run(o);
+  EXPECT_EQ(r.status, "completed");
+  Flown flown{{}, make_rig_configs(load_scenario(scenario, a3::test::shared_dir()), o)};
+  for (const auto& t : r.episode["dialogue"]) flown.dialogue.push_back(turn_of(t));
+  return flown;
 }
 
 // Shows `dialogue` up to (not including) index `until` to a fresh agent, deciding each agent turn
@@ -103,6 +145,54 @@ TEST(ScriptedAgentRecovery, ACaptureThatTimedOutIsTakenAgainAtThePoint) {
   }
   const agent::AgentDecision after_error = decide_after(configs.conversation, dialogue, capture + 2);
   EXPECT_NE(after_error.text.find("rgb is not active"), std::string::npos) << after_error.text;
+}
+
+TEST(ScriptedAgentRecovery, ALostTakeOffIsSentAgain) {
+  Flown flown = fly("parcel-delivery");
+  const std::size_t launch = first_turn_with(flown.dialogue, "takeoff");
+  ASSERT_LT(launch + 2, flown.dialogue.size()) << "parcel-delivery no longer takes off in a turn of its own";
+  ASSERT_EQ(first_turn_with({flown.dialogue.begin() + launch + 1, flown.dialogue.end()}, "takeoff"),
+            flown.dialogue.size() - launch - 1) << "parcel-delivery took off twice as flown";
+
+  // As flown: the take-off stood, and is not sent again.
+  const agent::AgentDecision as_flown = decide_after(flown.configs.conversation, flown.dialogue, launch + 2);
+  EXPECT_FALSE(has(names_of(as_flown.actions), "takeoff")) << as_flown.actions.dump();
+
+  // The take-off lost on the link; the supervisor's telemetry shows the vehicle disarmed at home:
+  // the next agent turn takes off again and flies the leg.
+  replace_answer(&flown.dialogue[launch], "takeoff", {{"status", "timeout"}});
+  agent::Turn& supervisor = flown.dialogue[launch + 1];
+  ASSERT_TRUE(has(names_of(supervisor.actions), "read_telemetry")) << "the supervisor no longer reads telemetry";
+  const agent::Turn as_read = supervisor;
+  replace_answer(&supervisor, "read_telemetry",
+                 {{"status", "ok"}, {"mode", "disarmed"}, {"armed", false}, {"speed_mps", 0.0},
+                  {"pose", {{"x", 100.0}, {"y", 100.0}, {"z", 0.0}}}});
+  const agent::AgentDecision again = decide_after(flown.configs.conversation, flown.dialogue, launch + 2);
+  const std::vector<std::string> names = names_of(again.actions);
+  EXPECT_TRUE(has(names, "takeoff")) << again.actions.dump();
+  EXPECT_TRUE(has(names, "navigate_to")) << again.actions.dump();
+
+  // The take-off's answer lost but the telemetry since shows the vehicle armed in the air: it took off.
+  supervisor = as_read;
+  const agent::AgentDecision airborne = decide_after(flown.configs.conversation, flown.dialogue, launch + 2);
+  EXPECT_FALSE(has(names_of(airborne.actions), "takeoff")) << airborne.actions.dump();
+}
+
+TEST(ScriptedAgentRecovery, ALostSensorActivationIsSentAgainWithTheSearch) {
+  Flown flown = fly("thermal-search");
+  const std::size_t search = first_turn_with(flown.dialogue, "execute_maneuver");
+  ASSERT_LT(search + 2, flown.dialogue.size()) << "thermal-search no longer searches before its last turn";
+  ASSERT_TRUE(has(names_of(flown.dialogue[search].actions), "activate_sensor"));
+
+  // The activation lost on the link, so the search was refused for want of the sensor: both are sent again.
+  replace_answer(&flown.dialogue[search], "activate_sensor", {{"status", "timeout"}});
+  replace_answer(&flown.dialogue[search], "execute_maneuver",
+                 {{"status", "error"}, {"error", "args/sensor: thermal is not active (activate_sensor first)"}});
+  const agent::AgentDecision again = decide_after(flown.configs.conversation, flown.dialogue, search + 2);
+  const std::vector<std::string> names = names_of(again.actions);
+  EXPECT_TRUE(has(names, "activate_sensor")) << again.actions.dump();
+  EXPECT_TRUE(has(names, "execute_maneuver")) << again.actions.dump();
+  EXPECT_NE(again.text.find("activate_sensor timed out"), std::string::npos) << again.text;
 }
 
 }  // namespace
