@@ -8,6 +8,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/json_text.hpp"
+#include "rigs/outputs/agent_faults.hpp"
 #include "rigs/run/llm_run.hpp"
 
 namespace a3::rigs {
@@ -167,7 +168,7 @@ nlohmann::json trajectory_json(const RecordedEpisode& rec, bool crashed) {
 }
 
 nlohmann::json rig_json(const Scenario& s, const RunOptions& o, const RecordedEpisode& rec, const RunFacts& f,
-                        nlohmann::json turns_rig, nlohmann::json safety_events, bool crashed) {
+                        const DialogueRecord& dialogue, nlohmann::json safety_events, bool crashed) {
   nlohmann::json rig = {
       {"status", f.status},
       {"scenario", s.name},
@@ -182,7 +183,8 @@ nlohmann::json rig_json(const Scenario& s, const RunOptions& o, const RecordedEp
       {"real_time_factor", {{"requested", o.runtime == Runtime::kVirtual ? 0.0 : o.real_time_factor},
                             {"achieved", f.achieved_real_time_factor}}},
       {"dialogue_end", rec.dialogue_end_reason},
-      {"turns", std::move(turns_rig)},
+      {"turns", dialogue.turns_rig},
+      {"agent_faults", find_agent_faults(dialogue.dialogue)},
       {"link", {{"up", link_json(rec.up)}, {"down", link_json(rec.down)}}},
       {"safety_events", std::move(safety_events)},
       {"flight_controller", {{"modes", rec.fc_modes}, {"failsafes", rec.fc_failsafes}}},
@@ -199,14 +201,14 @@ nlohmann::json rig_json(const Scenario& s, const RunOptions& o, const RecordedEp
 nlohmann::json build_episode(const Scenario& s, const RunOptions& o, const RecordedEpisode& rec, const RunFacts& f) {
   const nlohmann::json initial = initial_state_json(s);
   SafetyRecord safety = safety_record(rec);
-  DialogueRecord dialogue = dialogue_record(rec);
+  const DialogueRecord dialogue = dialogue_record(rec);
   const bool crashed = rec.last_state.crashed || safety.kinds.count("crash") > 0;
   return {{"initial_state", initial},
           {"final_state", final_state_json(s, rec, initial, safety.kinds, f.mission_time_s)},
-          {"dialogue", std::move(dialogue.dialogue)},
+          {"dialogue", dialogue.dialogue},
           {"success", rec.objectives_all_done && !crashed},
           {"_meta", meta_json(o, f, dialogue)},
-          {"_rig", rig_json(s, o, rec, f, std::move(dialogue.turns_rig), std::move(safety.events), crashed)}};
+          {"_rig", rig_json(s, o, rec, f, dialogue, std::move(safety.events), crashed)}};
 }
 
 void write_episode(const std::filesystem::path& dir, const nlohmann::json& episode) {

@@ -62,6 +62,7 @@ std::vector<AggregateRow> aggregate(const std::vector<ResultRow>& rows) {
     g.sp.push_back(r.sp);
     if (std::isfinite(r.mission_time_s)) g.mission_time_s.push_back(r.mission_time_s);
     if (r.success) ++g.row.successes;
+    if (r.agent_failure()) ++g.row.agent_failures;
   }
   std::vector<AggregateRow> out;
   for (auto& g : groups) {
@@ -85,14 +86,14 @@ void write_aggregate_csv(const std::filesystem::path& path, const std::vector<Ag
   // The interval columns are empty where the interval is undefined (t: n < 2; Wilson: n = 0).
   out << "scenario,agent,think_time,think_time_mean_s,slice,n,n_missing,alpha3_mean,alpha3_ci95_lo,"
          "alpha3_ci95_hi,SP_mean,SP_ci95_lo,SP_ci95_hi,successes,success_rate,success_ci95_lo,success_ci95_hi,"
-         "mission_time_mean_s\n";
+         "mission_time_mean_s,agent_failures\n";
   for (const auto& a : rows) {
     out << common::csv_cell(a.scenario) << "," << common::csv_cell(a.agent) << "," << common::csv_cell(a.think_time) << ","
         << number(a.think_time_mean_s) << "," << common::csv_cell(a.slice) << "," << a.n << "," << a.n_missing << ","
         << (a.n ? number(a.alpha3_mean) : "") << "," << interval_fields(a.alpha3_ci) << ","
         << (a.n ? number(a.sp_mean) : "") << "," << interval_fields(a.sp_ci) << "," << a.successes << ","
         << (a.n ? number(a.success_rate) : "") << "," << interval_fields(a.success_ci) << ","
-        << (a.n ? number(a.mission_time_mean_s) : "") << "\n";
+        << (a.n ? number(a.mission_time_mean_s) : "") << "," << a.agent_failures << "\n";
   }
   common::write_file_atomically(path, out.str());
 }

@@ -1,6 +1,7 @@
 // Aggregates of a sweep (aggregate.csv): per scenario × agent × think time × slice, the number
 // of episodes, mean α³ and SP with Student's t 95 % intervals (clamped to [0, 1], where the
-// scores live), and the success rate with its Wilson 95 % interval. Cells without a complete
+// scores live), the success rate with its Wilson 95 % interval, and how many of the failures were
+// the agent's own (a fault inside the agent, rigs/outputs/agent_faults.hpp). Cells without a complete
 // episode are counted apart (n_missing) and enter no statistic.
 #pragma once
 
@@ -30,6 +31,7 @@ struct AggregateRow {
   double success_rate = 0.0;
   std::optional<Interval> success_ci;  // none for n = 0
   double mission_time_mean_s = 0.0;
+  int agent_failures = 0;  // failed episodes with a fault inside the agent (ResultRow::agent_failure)
 };
 
 // Groups in the order the rows first name them.

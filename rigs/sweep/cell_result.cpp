@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include "common/json_text.hpp"
 
@@ -83,6 +84,20 @@ double number_at(const nlohmann::json& j, const char* pointer) {
   return j.contains(p) && j[p].is_number() ? j[p].get<double>() : std::nan("");
 }
 
+// The kinds of the episode's _rig.agent_faults, sorted and unique, ";"-joined.
+std::string agent_fault_kinds(const nlohmann::json& episode) {
+  const nlohmann::json::json_pointer p("/_rig/agent_faults");
+  std::set<std::string> kinds;
+  if (episode.contains(p) && episode[p].is_array()) {
+    for (const auto& fault : episode[p]) {
+      if (fault.is_object() && fault.contains("kind") && fault["kind"].is_string()) kinds.insert(fault["kind"].get<std::string>());
+    }
+  }
+  std::string joined;
+  for (const auto& k : kinds) joined += (joined.empty() ? "" : ";") + k;
+  return joined;
+}
+
 }  // namespace
 
 ResultRow EpisodeScorer::row(const SweepCell& cell, const nlohmann::json& episode, const std::string& episode_relative) {
@@ -93,6 +108,7 @@ ResultRow EpisodeScorer::row(const SweepCell& cell, const nlohmann::json& episod
   r.mission_time_s = number_at(episode, "/_rig/mission_time_s");
   r.wall_time_s = number_at(episode, "/_rig/wall_time_s");
   r.episode = episode_relative;
+  r.agent_faults = agent_fault_kinds(episode);
   const eval::EpisodeCheck check = impl_->reader.check_text(episode.dump());
   r.valid = check.status == eval::EpisodeStatus::kValid;
   if (r.valid) {

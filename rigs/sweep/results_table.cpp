@@ -30,7 +30,8 @@ std::string row_line(const ResultRow& r) {
       r.scenario, r.agent, r.think_time, number(r.think_time_mean_s), r.slice, std::to_string(r.seed), r.status,
       e ? (r.success ? "1" : "0") : "", e ? (r.valid ? "1" : "0") : "", e ? number(r.alpha3) : "",
       e ? number(r.to) : "", e ? number(r.sp) : "", e ? number(r.tc) : "", e ? number(r.iq) : "",
-      e ? number(r.nr) : "", e ? number(r.cc) : "", number(r.mission_time_s), number(r.wall_time_s), r.episode};
+      e ? number(r.nr) : "", e ? number(r.cc) : "", number(r.mission_time_s), number(r.wall_time_s), r.episode,
+      r.agent_faults, e ? (r.agent_failure() ? "1" : "0") : ""};
   std::string line;
   for (std::size_t i = 0; i < fields.size(); ++i) line += (i ? "," : "") + common::csv_cell(fields[i]);
   return line;
@@ -92,6 +93,12 @@ ResultRow parse_row(const FieldReader& f) {
   r.mission_time_s = f.real(16, true);
   r.wall_time_s = f.real(17, true);
   r.episode = f.text(18);
+  if (f.fields.size() > 19) {  // tables written before the agent-fault columns have none
+    r.agent_faults = f.text(19);
+    if (r.has_episode && f.flag(20) != r.agent_failure()) {
+      throw std::runtime_error(f.where(20) + ": disagrees with the success and agent_faults columns");
+    }
+  }
   return r;
 }
 
@@ -103,7 +110,8 @@ CellKey key_of(const ResultRow& r) { return {r.scenario, r.agent, r.think_time, 
 const std::vector<std::string>& results_columns() {
   static const std::vector<std::string> kColumns = {
       "scenario", "agent", "think_time", "think_time_mean_s", "slice", "seed", "status", "success", "valid",
-      "alpha3", "TO", "SP", "TC", "IQ", "NR", "CC", "mission_time_s", "wall_time_s", "episode"};
+      "alpha3", "TO", "SP", "TC", "IQ", "NR", "CC", "mission_time_s", "wall_time_s", "episode",
+      "agent_faults", "agent_failure"};
   return kColumns;
 }
 
@@ -127,7 +135,10 @@ std::vector<ResultRow> read_results_csv(const std::filesystem::path& path) {
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(path.string() + ":1: " + e.what());
   }
-  if (header != results_columns()) {
+  // A table written before the agent-fault columns (the last two) is read as it is.
+  const auto& columns = results_columns();
+  const bool older = header.size() == columns.size() - 2 && std::equal(header.begin(), header.end(), columns.begin());
+  if (header != columns && !older) {
     std::string expected;
     for (const auto& c : results_columns()) expected += (expected.empty() ? "" : ",") + c;
     throw std::runtime_error(path.string() + ":1: not a sweep results table (expected the header " + expected + ")");
@@ -143,10 +154,10 @@ std::vector<ResultRow> read_results_csv(const std::filesystem::path& path) {
     } catch (const std::invalid_argument& e) {
       throw std::runtime_error(path.string() + ":" + std::to_string(line_number) + ": " + e.what());
     }
-    if (fields.size() != results_columns().size()) {
+    if (fields.size() != header.size()) {
       throw std::runtime_error(path.string() + ":" + std::to_string(line_number) + ": " +
                                std::to_string(fields.size()) + " fields (expected " +
-                               std::to_string(results_columns().size()) + ")");
+                               std::to_string(header.size()) + ")");
     }
     rows.push_back(parse_row(FieldReader{path, line_number, fields}));
   }

@@ -28,6 +28,10 @@ struct ResultRow {
   double mission_time_s = std::numeric_limits<double>::quiet_NaN();
   double wall_time_s = std::numeric_limits<double>::quiet_NaN();
   std::string episode;  // episode.json relative to the sweep's folder
+  // The kinds of _rig.agent_faults (rigs/outputs/agent_faults.hpp), sorted, ";"-joined; empty: none.
+  std::string agent_faults;
+  // A failed episode with a fault inside the agent: the agent's failure, not the link's.
+  bool agent_failure() const { return has_episode && !success && !agent_faults.empty(); }
 };
 
 // The header line's column names, in order.

@@ -57,14 +57,21 @@ void plots_section(std::ostream& html, const fs::path& out_dir, const std::vecto
 
 void aggregate_section(std::ostream& html, const std::vector<AggregateRow>& aggregates) {
   html << "<h2>Aggregate (95 % intervals)</h2>\n<table id=\"aggregate\"><tr><th>scenario</th><th>agent</th>"
-          "<th>think time</th><th>slice</th><th>n</th><th>α³</th><th>SP</th><th>success</th></tr>\n";
+          "<th>think time</th><th>slice</th><th>n</th><th>α³</th><th>SP</th><th>success</th>"
+          "<th title=\"failed episodes with a fault inside the agent\">agent's failures</th></tr>\n";
   for (const AggregateRow& a : aggregates) {
     html << "<tr><td>" << html_escaped(a.scenario) << "</td><td>" << html_escaped(a.agent) << "</td><td>" << html_escaped(a.think_time)
          << "</td><td>" << html_escaped(a.slice) << "</td><td>" << a.n << "</td><td>" << with_interval(a.alpha3_mean, a.alpha3_ci, 3)
          << "</td><td>" << with_interval(a.sp_mean, a.sp_ci, 3) << "</td><td>"
-         << with_interval(a.success_rate, a.success_ci, 2) << "</td></tr>\n";
+         << with_interval(a.success_rate, a.success_ci, 2) << "</td><td>" << a.agent_failures << "</td></tr>\n";
   }
   html << "</table>\n";
+}
+
+// "yes", "no", or "no (agent: <fault kinds>)" when the failure was the agent's own.
+std::string success_text(const ResultRow& r) {
+  if (r.success) return "yes";
+  return r.agent_failure() ? "no (agent: " + html_escaped(r.agent_faults) + ")" : "no";
 }
 
 void cells_section(std::ostream& html, const fs::path& out_dir, const std::vector<ResultRow>& rows) {
@@ -73,7 +80,7 @@ void cells_section(std::ostream& html, const fs::path& out_dir, const std::vecto
   for (const ResultRow& r : rows) {
     html << "<tr class=\"cell\"><td>" << html_escaped(r.scenario) << "</td><td>" << html_escaped(r.agent) << "</td><td>"
          << html_escaped(r.think_time) << "</td><td>" << html_escaped(r.slice) << "</td><td>" << r.seed << "</td><td>"
-         << html_escaped(r.status) << "</td><td>" << (r.success ? "yes" : "no") << "</td><td>"
+         << html_escaped(r.status) << "</td><td>" << success_text(r) << "</td><td>"
          << (r.has_episode ? number(r.alpha3, 4) : "–") << "</td><td>"
          << cell_link(out_dir, r)
          << "</td></tr>\n";

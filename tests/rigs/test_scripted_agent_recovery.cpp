@@ -75,6 +75,7 @@ Flown fly(const std::string& scenario) {
   RunOptions o = a3::test::virtual_run(scenario, "recovery-" + scenario);
   const RunResult r = a3::test::run(o);
   EXPECT_EQ(r.status, "completed");
+  EXPECT_EQ(r.episode["_rig"]["agent_faults"], json::array()) << "the reference agent made a fault as flown";
   Flown flown{{}, make_rig_configs(load_scenario(scenario, a3::test::shared_dir()), o)};
   for (const auto& t : r.episode["dialogue"]) flown.dialogue.push_back(turn_of(t));
   return flown;

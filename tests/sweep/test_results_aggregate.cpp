@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <sstream>
 
 #include "common/csv_text.hpp"
 #include "rigs/sweep/aggregate.hpp"
@@ -125,6 +126,65 @@ TEST(ResultsTable, MalformedFilesAreNamedWithLineAndColumn) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("bad-value.csv:2: column alpha3: 'zero'"), std::string::npos) << e.what();
   }
+}
+
+TEST(ResultsTable, AgentFaultsFlagTheAgentsOwnFailures) {
+  TempDir dir;
+  std::vector<ResultRow> rows = hand_made_set();
+  rows[2].agent_faults = "refused_repeated;timeout_not_retried";  // failed, with faults: the agent's failure
+  rows[1].agent_faults = "timeout_not_retried";                   // succeeded anyway: not a failure
+  EXPECT_TRUE(rows[2].agent_failure());
+  EXPECT_FALSE(rows[1].agent_failure());
+  EXPECT_FALSE(rows[3].agent_failure());  // failed without a fault: the link's or the world's
+  write_results_csv(dir.path / "results.csv", rows);
+  const auto table = read_table(dir.path / "results.csv");
+  EXPECT_EQ(table[2].at("agent_failure"), "1");
+  EXPECT_EQ(table[1].at("agent_failure"), "0");
+  EXPECT_EQ(table[4].at("agent_failure"), "");  // no episode
+  const auto back = read_results_csv(dir.path / "results.csv");
+  EXPECT_EQ(back[2].agent_faults, rows[2].agent_faults);
+  EXPECT_TRUE(back[2].agent_failure());
+
+  const auto aggregates = aggregate(rows);
+  ASSERT_FALSE(aggregates.empty());
+  EXPECT_EQ(aggregates[0].agent_failures, 1);
+  write_aggregate_csv(dir.path / "aggregate.csv", aggregates);
+  EXPECT_EQ(read_table(dir.path / "aggregate.csv")[0].at("agent_failures"), "1");
+
+  // A flag that disagrees with the faults and the success is named.
+  std::string text;
+  {
+    std::ifstream in(dir.path / "results.csv");
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const auto at = text.find(",timeout_not_retried,0\n");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, std::string(",timeout_not_retried,0").size(), ",timeout_not_retried,1");
+  std::ofstream(dir.path / "bad-flag.csv") << text;
+  try {
+    read_results_csv(dir.path / "bad-flag.csv");
+    FAIL() << "an agent_failure flag that disagrees was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("bad-flag.csv:3: column agent_failure"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ResultsTable, ATableFromBeforeTheAgentFaultColumnsStillReads) {
+  TempDir dir;
+  write_results_csv(dir.path / "results.csv", hand_made_set());
+  std::ifstream in(dir.path / "results.csv");
+  std::ostringstream older;
+  for (std::string line; std::getline(in, line);) {
+    auto fields = common::csv_fields(line);
+    fields.resize(fields.size() - 2);
+    for (std::size_t i = 0; i < fields.size(); ++i) older << (i ? "," : "") << common::csv_cell(fields[i]);
+    older << "\n";
+  }
+  std::ofstream(dir.path / "older.csv") << older.str();
+  const auto back = read_results_csv(dir.path / "older.csv");
+  ASSERT_EQ(back.size(), 5u);
+  EXPECT_DOUBLE_EQ(back[2].alpha3, 0.8);
+  EXPECT_TRUE(back[2].agent_faults.empty());
 }
 
 TEST(ResultsTable, ShardFilesMergeIntoOneRowPerCell) {
