@@ -43,6 +43,8 @@ void SwarmConfig::validate(const std::string& where) const {
   require(std::isfinite(horizon_s) && horizon_s > 0.0, where + ".horizon_s must be > 0, got " + std::to_string(horizon_s));
   require(std::isfinite(conflict_buffer_m) && conflict_buffer_m >= 0.0,
           where + ".conflict_buffer_m must be >= 0, got " + std::to_string(conflict_buffer_m));
+  require(std::isfinite(own_lateness_s) && own_lateness_s >= 0.0 && own_lateness_s <= 600.0,
+          where + ".own_lateness_s must be in [0, 600], got " + std::to_string(own_lateness_s));
   require(std::isfinite(yield_climb_rate_mps) && yield_climb_rate_mps > 0.0,
           where + ".yield_climb_rate_mps must be > 0, got " + std::to_string(yield_climb_rate_mps));
   require(std::isfinite(formation_radius_m) && formation_radius_m >= 0.0,
@@ -75,6 +77,25 @@ Approach closest_approach(const TrafficPlan& a, const TrafficPlan& b, double t0,
     }
   }
   consider(times.back());
+  return best;
+}
+
+Approach closest_approach_running_late(const TrafficPlan& late, const TrafficPlan& other, double t0, double horizon,
+                                       double max_late_s) {
+  Approach best = closest_approach(late, other, t0, horizon);
+  if (late.path.empty()) return best;
+  const Eigen::Vector3d now_W_m = late.position_at(t0);
+  for (double delay_s = 1.0; delay_s <= max_late_s + 1e-9; delay_s += 1.0) {
+    TrafficPlan delayed = late;
+    delayed.path.clear();
+    delayed.path.push_back({t0, now_W_m});
+    delayed.path.push_back({t0 + delay_s, now_W_m});  // waits, then flies the rest as planned
+    for (const auto& w : late.path) {
+      if (w.t_s > t0 + 1e-9) delayed.path.push_back({w.t_s + delay_s, w.p_W_m});  // the past stays past
+    }
+    const Approach a = closest_approach(delayed, other, t0, horizon);
+    if (a.distance_m < best.distance_m) best = a;
+  }
   return best;
 }
 
@@ -135,7 +156,8 @@ PeerAnswer SwarmPeer::collision_avoidance(const SelfView& self, const nlohmann::
   int conflicts = 0, unresolved = 0;
   double nearest = std::numeric_limits<double>::infinity();
   for (auto& peer : peers_) {
-    const Approach before = closest_approach(self.predicted, peer.plan, now, config_.horizon_s);
+    const Approach before =
+        closest_approach_running_late(self.predicted, peer.plan, now, config_.horizon_s, config_.own_lateness_s);
     const double required = peer.plan.min_separation_m;
     const bool conflict = before.distance_m < required + config_.conflict_buffer_m;
     nearest = std::min(nearest, before.distance_m);
@@ -154,7 +176,8 @@ PeerAnswer SwarmPeer::collision_avoidance(const SelfView& self, const nlohmann::
       } else if (peer.plan.yields_when_asked && !peer.yielded) {
         peer.plan = climbed_plan(peer.plan, now, peer.plan.yield_climb_m, config_.yield_climb_rate_mps);
         peer.yielded = true;
-        const Approach after = closest_approach(self.predicted, peer.plan, now, config_.horizon_s);
+        const Approach after =
+            closest_approach_running_late(self.predicted, peer.plan, now, config_.horizon_s, config_.own_lateness_s);
         e["action"] = "yielding";
         e["climb_m"] = rounded(peer.plan.yield_climb_m, 1);
         e["climb_rate_mps"] = rounded(config_.yield_climb_rate_mps, 1);

@@ -32,6 +32,11 @@ namespace a3::vehicle {
 struct SwarmConfig {
   double horizon_s = 60.0;            // how far ahead closest approaches are predicted
   double conflict_buffer_m = 10.0;    // added to a peer's min separation to call a conflict
+  // Our vehicle may run up to this late against its predicted path (the prediction ignores the
+  // braking, settling and speeding up at each route waypoint — 8.6 s per waypoint measured at
+  // 8 m/s in a 7 m/s tailwind, against the 3 s the energy model allows — and a headwind's gusts):
+  // the closest approach is the nearest over every lateness in [0, own_lateness_s].
+  double own_lateness_s = 15.0;
   double yield_climb_rate_mps = 2.5;  // how fast a yielding peer climbs
   double formation_radius_m = 300.0;  // peers farther than this decline a formation
 
@@ -47,6 +52,10 @@ struct Approach {
 
 // The closest approach of two plans over [t0_s, t0_s + horizon_s] (exact).
 Approach closest_approach(const TrafficPlan& a, const TrafficPlan& b, double t0_s, double horizon_s);
+// The closest approach when plan `late` may run up to max_late_s behind its times (sampled each
+// second, the nearest kept; it waits where it is at t0 meanwhile).
+Approach closest_approach_running_late(const TrafficPlan& late, const TrafficPlan& other, double t0, double horizon,
+                                       double max_late_s);
 // The plan climbing climb_m from t0_s at rate_mps on top of its course.
 TrafficPlan climbed_plan(const TrafficPlan& plan, double t0_s, double climb_m, double rate_mps);
 

@@ -78,8 +78,7 @@ A3_REGISTER_COMMAND("12-scenario", [](CLI::App& app) {
   cmd->add_option("--difficulty", args->difficulty, "easy, medium (default) or hard: the knobs' preset")
       ->check(CLI::IsMember(difficulty_names()));
   cmd->add_option("--knob", args->knobs,
-                  "knob=value over the preset, repeatable: objectives, survey, image_point, delivery, thermal_search, "
-                  "nfz, traffic, wind, gust, payload, airframe, degradations, turns, slice");
+                  "knob=value over the preset, repeatable: " + knob_names());
   cmd->add_option("-o,--output", args->out_file, "the file to write (default: standard output)");
   cmd->add_option("--count", args->count, "write this many missions, seeds SEED..SEED+COUNT-1, into --out-dir")
       ->check(a3::rigs::between(1, 100000));

@@ -145,6 +145,35 @@ double time_limit_for(const MissionCheck& check, int turns) {
   return 60.0 * std::ceil(seconds / 60.0);
 }
 
+// Mission seconds at which the vehicle lifts off after the pre-flight turn.
+constexpr double kLiftoff_s = 5.0;
+
+// When `phase` begins, mission seconds, from the reference flight's estimate.
+double phase_start_s(const std::string& phase, const MissionCheck& check) {
+  if (phase == "transit") return kLiftoff_s + check.phases.transit_s;
+  if (phase == "objective") return kLiftoff_s + check.phases.objective_s;
+  if (phase == "home") return kLiftoff_s + check.phases.home_s;
+  return kLiftoff_s - 1.0;  // takeoff: from the launch command on
+}
+
+// Moves the degradation windows into the mission phases degrade_at asks for: window i into the
+// phase after window i-1's, each starting a few seconds before its phase begins.
+void place_degradations(nlohmann::json& network, const GeneratorSpec& spec, const MissionCheck& check) {
+  const MissionKnobs& k = spec.knobs;
+  if (k.degrade_at == "any" || !network.contains("degradations")) return;
+  const std::vector<std::string>& phases = degradation_phases();
+  std::size_t first = std::find(phases.begin(), phases.end(), k.degrade_at) - phases.begin();
+  if (first >= phases.size()) {
+    common::Rng rng = common::RngStreams(spec.seed).stream("scenario_generator/phases");
+    first = static_cast<std::size_t>(rng.uniform01() * static_cast<double>(phases.size()));
+  }
+  for (std::size_t i = 0; i < network["degradations"].size(); ++i) {
+    const std::string& phase = phases[(first + i) % phases.size()];
+    network["degradations"][i]["start_s"] = std::round(std::max(0.0, phase_start_s(phase, check) - 5.0));
+    network["degradations"][i]["phase"] = phase;
+  }
+}
+
 }  // namespace
 
 nlohmann::json generate_scenario_json(const GeneratorSpec& spec) {
@@ -162,6 +191,7 @@ nlohmann::json generate_scenario_json(const GeneratorSpec& spec) {
       continue;
     }
     doc["mission"]["time_limit_s"] = time_limit_for(check, spec.knobs.turns);
+    place_degradations(doc["network"], spec, check);
     (void)scenario_from_json(doc, where, ".");
     return doc;
   }

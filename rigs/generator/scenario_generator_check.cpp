@@ -93,6 +93,19 @@ void fly_objective(RouteWalk& walk, const agent::Objective& o, double cruise_m, 
   }
 }
 
+MissionCheck with_problem(MissionCheck m, const std::string& problem) {
+  m.problem = problem;
+  return m;
+}
+
+// How many of `points` are flown up to the first one (from `from` on) above `anchor`.
+std::size_t points_to(const Points& points, std::size_t from, const Eigen::Vector2d& anchor) {
+  for (std::size_t i = from; i < points.size(); ++i) {
+    if ((points[i].head<2>() - anchor).norm() < 1e-6) return i + 1;
+  }
+  return points.size();
+}
+
 std::string wind_problem(const Scenario& s, const MissionCheck& m) {
   const double wind = s.start.env.wind_mps;
   const double gust = s.start.env.gust_mps.value_or(wind);
@@ -123,17 +136,20 @@ MissionCheck check_generated_mission(const Scenario& s) {
   const vehicle::SafetyGate gate(t.airspace, t.gate, t.energy, t.home_W_m);
   RouteWalk walk{gate, t.planner, {}, t.home_W_m, ""};
   bool first = true;
+  std::size_t first_objective_points = 0;  // the points up to the first objective's anchor
   for (const auto& o : s.mission.objectives) {
     if (o.type == ObjectiveType::kReturnAndLand) continue;
+    const std::size_t before = walk.points.size();
     fly_objective(walk, o, s.mission.cruise_altitude_m, first);
+    if (first) first_objective_points = points_to(walk.points, before, anchor_of(o));
     first = false;
-    if (!walk.problem.empty()) return {walk.problem};
+    if (!walk.problem.empty()) return with_problem(m, walk.problem);
   }
   const Points outbound = walk.points;
   const double return_z = std::clamp(std::max(walk.at.z(), t.gate.return_altitude_m), t.airspace.min_altitude_m,
                                      t.airspace.max_altitude_m);
   walk.plan_to(t.home_W_m.head<2>(), return_z, "the way home");
-  if (!walk.problem.empty()) return {walk.problem};
+  if (!walk.problem.empty()) return with_problem(m, walk.problem);
   walk.points.push_back(t.home_W_m);
 
   const vehicle::BatteryEstimate battery = gate.estimate_battery(t.home_W_m, outbound, m.ground_speed_mps, 100.0);
@@ -144,6 +160,12 @@ MissionCheck check_generated_mission(const Scenario& s) {
     return m;
   }
   m.route_time_s = t.energy.route_time_s(t.home_W_m, walk.points, m.ground_speed_mps);
+  const Eigen::Vector3d top_of_climb(t.home_W_m.x(), t.home_W_m.y(), s.mission.cruise_altitude_m);
+  m.phases.transit_s = t.energy.route_time_s(t.home_W_m, {top_of_climb}, m.ground_speed_mps);
+  m.phases.objective_s = t.energy.route_time_s(
+      t.home_W_m, Points(outbound.begin(), outbound.begin() + static_cast<std::ptrdiff_t>(first_objective_points)),
+      m.ground_speed_mps);
+  m.phases.home_s = t.energy.route_time_s(t.home_W_m, outbound, m.ground_speed_mps);
   return m;
 }
 

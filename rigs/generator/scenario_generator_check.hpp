@@ -18,6 +18,13 @@ struct MissionCheck {
   double max_airspeed_mps = 0.0; // level flight at the tilt limit with the payloads' drag
   double ground_speed_mps = 0.0; // the speed assumed into the wind
   double battery_left_pct = 0.0; // the gate's estimate after the whole mission
+  // When each phase of the reference flight begins, seconds after take-off at the ground speed
+  // (the climb, the transit to the first objective, the first objective's work, the way home).
+  struct Phases {
+    double transit_s = 0.0;
+    double objective_s = 0.0;
+    double home_s = 0.0;
+  } phases;
 };
 
 // Survey lawnmower spacing of the reference policy (the scripted agent), metres.

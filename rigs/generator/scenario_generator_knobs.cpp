@@ -92,6 +92,11 @@ const std::vector<std::pair<std::string, Knob>>& knob_table() {
       {"payload", amount_knob(&MissionKnobs::payload_kg)},
       {"airframe", word_knob(&MissionKnobs::airframe, {"auto", "iris", "heavy-lift"})},
       {"degradations", count_knob(&MissionKnobs::degradations)},
+      {"degrade_at", word_knob(&MissionKnobs::degrade_at, [] {
+         std::vector<std::string> names = any_or(degradation_phases());
+         names.insert(names.begin() + 1, "phases");
+         return names;
+       }())},
       {"turns", count_knob(&MissionKnobs::turns)},
       {"slice", word_knob(&MissionKnobs::slice, any_or(linkemu::slice_names()))},
   };
@@ -114,6 +119,11 @@ uint64_t parse_seed(const std::string& text, const std::string& spec) {
 }  // namespace
 
 std::vector<std::string> difficulty_names() { return {"easy", "medium", "hard"}; }
+
+const std::vector<std::string>& degradation_phases() {
+  static const std::vector<std::string> kPhases = {"takeoff", "transit", "objective", "home"};
+  return kPhases;
+}
 
 MissionKnobs difficulty_preset(const std::string& name) {
   MissionKnobs k;
@@ -141,6 +151,12 @@ MissionKnobs difficulty_preset(const std::string& name) {
     throw InputError("gen difficulty '" + name + "': expected easy, medium or hard");
   }
   return k;
+}
+
+std::string knob_names() {
+  std::string names;
+  for (const auto& [name, knob] : knob_table()) names += (names.empty() ? "" : ", ") + name;
+  return names;
 }
 
 void set_knob(MissionKnobs& knobs, const std::string& name, const std::string& value) {

@@ -6,6 +6,7 @@
 // gen:7, gen:7:hard, gen:7:hard+wind=3+nfz=0. Knobs (see MissionKnobs):
 //   objectives=N  survey=N image_point=N delivery=N thermal_search=N  nfz=N  traffic=N
 //   wind=M/S  gust=M/S  payload=KG  airframe=auto|iris|heavy-lift  degradations=N  turns=T
+//   degrade_at=any|phases|takeoff|transit|objective|home
 //   slice=URLLC|eMBB|mMTC|any
 // Bad specs throw common::InputError naming the item.
 #pragma once
@@ -32,6 +33,10 @@ struct MissionKnobs {
   double payload_kg = 0.3;   // the parcel of a delivery; without a delivery, a sensor pod (0: none)
   std::string airframe = "auto";  // auto: iris unless the payload needs the heavy-lift
   int degradations = 1;      // windows of forced link degradation
+  // Where they fall: "any" (drawn over the first minutes), "phases" (window i in the mission
+  // phase after window i-1's, the first phase drawn), or a phase — takeoff, transit, objective,
+  // home — for the first window (the next ones in the phases after it).
+  std::string degrade_at = "phases";
   int turns = 12;            // dialogue turn budget the mission is sized for (8..12)
   std::string slice = "any"; // initial 6G slice; any: drawn
 };
@@ -42,8 +47,12 @@ struct GeneratorSpec {
 };
 
 std::vector<std::string> difficulty_names();
+// The mission phases a degradation window can be placed in, in flight order.
+const std::vector<std::string>& degradation_phases();
 // Throws common::InputError for an unknown name.
 MissionKnobs difficulty_preset(const std::string& name);
+// Every knob's name, ", "-separated (for help texts).
+std::string knob_names();
 // Sets one knob from text; throws common::InputError naming the knob and the value.
 void set_knob(MissionKnobs& knobs, const std::string& name, const std::string& value);
 // Checks ranges and consistency (counts within objectives, turns 8..12, ...).

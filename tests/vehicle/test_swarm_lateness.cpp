@@ -1,0 +1,66 @@
+// The swarm's conflict prediction allows our vehicle to run late against its predicted path
+// (stops at route waypoints, wind): the closest approach is the nearest over every lateness up
+// to own_lateness_s, and the vehicle waits where it is meanwhile.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "vehicle/swarm_peer.hpp"
+
+namespace a3::vehicle {
+namespace {
+
+// Ours: east along y = 0 at 10 m/s from the origin at t = 0. The peer: north along x = 100 at
+// 10 m/s, crossing y = 0 at t = 20 — ten seconds after we pass x = 100.
+TrafficPlan ours() {
+  TrafficPlan p;
+  p.id = "self";
+  p.path = {{0.0, Eigen::Vector3d(0, 0, 40)}, {30.0, Eigen::Vector3d(300, 0, 40)}};
+  return p;
+}
+TrafficPlan crossing_peer() {
+  TrafficPlan p;
+  p.id = "peer";
+  p.path = {{0.0, Eigen::Vector3d(100, -200, 40)}, {40.0, Eigen::Vector3d(100, 200, 40)}};
+  return p;
+}
+
+TEST(SwarmLateness, OnTimeTheCrossingIsClear) {
+  // (10t - 100, 10t - 200) is shortest at t = 15: 50 √2 m.
+  EXPECT_NEAR(closest_approach_running_late(ours(), crossing_peer(), 0.0, 60.0, 0.0).distance_m, 50.0 * std::sqrt(2.0), 1e-6);
+  EXPECT_NEAR(closest_approach(ours(), crossing_peer(), 0.0, 60.0).distance_m, 50.0 * std::sqrt(2.0), 1e-6);
+}
+
+TEST(SwarmLateness, FiveSecondsLateHalvesIt) {
+  // Five seconds late: (10t - 150, 10t - 200), shortest at t = 17.5: 25 √2 m.
+  EXPECT_NEAR(closest_approach_running_late(ours(), crossing_peer(), 0.0, 60.0, 5.0).distance_m, 25.0 * std::sqrt(2.0), 1e-6);
+}
+
+TEST(SwarmLateness, TenSecondsLateIsACollisionCourse) {
+  const Approach a = closest_approach_running_late(ours(), crossing_peer(), 0.0, 60.0, 15.0);
+  EXPECT_LT(a.distance_m, 1e-6);
+  EXPECT_NEAR(a.t_s, 20.0, 1e-6);
+  EXPECT_NEAR(a.a_W_m.x(), 100.0, 1e-6);
+}
+
+TEST(SwarmLateness, ALateVehicleWaitsWhereItIsNotWhereItWasPlannedToBe) {
+  // From t0 = 5 s, ours is at (50, 0): ten seconds late it is still there at t = 15, not back at 0.
+  TrafficPlan still_peer;
+  still_peer.id = "still";
+  still_peer.path = {{0.0, Eigen::Vector3d(0, 0, 40)}};  // parked at our start point
+  const Approach a = closest_approach_running_late(ours(), still_peer, 5.0, 10.0, 10.0);
+  EXPECT_NEAR(a.distance_m, 50.0, 1e-6);
+}
+
+TEST(SwarmLateness, TheConfigRefusesANegativeOrHugeLateness) {
+  SwarmConfig c;
+  c.own_lateness_s = -1.0;
+  EXPECT_THROW(c.validate("swarm"), std::invalid_argument);
+  c.own_lateness_s = 1e9;
+  EXPECT_THROW(c.validate("swarm"), std::invalid_argument);
+  c.own_lateness_s = 15.0;
+  EXPECT_NO_THROW(c.validate("swarm"));
+}
+
+}  // namespace
+}  // namespace a3::vehicle
