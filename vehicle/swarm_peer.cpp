@@ -45,6 +45,8 @@ void SwarmConfig::validate(const std::string& where) const {
           where + ".conflict_buffer_m must be >= 0, got " + std::to_string(conflict_buffer_m));
   require(std::isfinite(own_lateness_s) && own_lateness_s >= 0.0 && own_lateness_s <= 600.0,
           where + ".own_lateness_s must be in [0, 600], got " + std::to_string(own_lateness_s));
+  require(std::isfinite(max_yield_hold_s) && max_yield_hold_s >= 0.0 && max_yield_hold_s <= 600.0,
+          where + ".max_yield_hold_s must be in [0, 600], got " + std::to_string(max_yield_hold_s));
   require(std::isfinite(yield_climb_rate_mps) && yield_climb_rate_mps > 0.0,
           where + ".yield_climb_rate_mps must be > 0, got " + std::to_string(yield_climb_rate_mps));
   require(std::isfinite(formation_radius_m) && formation_radius_m >= 0.0,
@@ -80,20 +82,24 @@ Approach closest_approach(const TrafficPlan& a, const TrafficPlan& b, double t0,
   return best;
 }
 
+TrafficPlan delayed_plan(const TrafficPlan& plan, double t0, double delay_s) {
+  TrafficPlan delayed = plan;
+  if (plan.path.empty() || !(delay_s > 0.0)) return delayed;
+  const Eigen::Vector3d now_W_m = plan.position_at(t0);
+  delayed.path.clear();
+  delayed.path.push_back({t0, now_W_m});
+  delayed.path.push_back({t0 + delay_s, now_W_m});  // waits, then flies the rest as planned
+  for (const auto& w : plan.path) {
+    if (w.t_s > t0 + 1e-9) delayed.path.push_back({w.t_s + delay_s, w.p_W_m});  // the past stays past
+  }
+  return delayed;
+}
+
 Approach closest_approach_running_late(const TrafficPlan& late, const TrafficPlan& other, double t0, double horizon,
                                        double max_late_s) {
   Approach best = closest_approach(late, other, t0, horizon);
-  if (late.path.empty()) return best;
-  const Eigen::Vector3d now_W_m = late.position_at(t0);
   for (double delay_s = 1.0; delay_s <= max_late_s + 1e-9; delay_s += 1.0) {
-    TrafficPlan delayed = late;
-    delayed.path.clear();
-    delayed.path.push_back({t0, now_W_m});
-    delayed.path.push_back({t0 + delay_s, now_W_m});  // waits, then flies the rest as planned
-    for (const auto& w : late.path) {
-      if (w.t_s > t0 + 1e-9) delayed.path.push_back({w.t_s + delay_s, w.p_W_m});  // the past stays past
-    }
-    const Approach a = closest_approach(delayed, other, t0, horizon);
+    const Approach a = closest_approach(delayed_plan(late, t0, delay_s), other, t0, horizon);
     if (a.distance_m < best.distance_m) best = a;
   }
   return best;
@@ -143,6 +149,18 @@ std::string SwarmPeer::status_of(const SwarmPeerState& peer, double t) const {
   return "en_route";
 }
 
+SwarmPeer::YieldPlan SwarmPeer::plan_yield(const TrafficPlan& ours, const TrafficPlan& peer, double now,
+                                            double wanted_m) const {
+  // Climb away; when the climb alone leaves less than the wanted separation, also hold the
+  // course (climbing in place) a little longer each time, up to max_yield_hold_s.
+  YieldPlan y;
+  for (y.hold_s = 0.0;; y.hold_s += kYieldHoldStep_s) {
+    y.plan = climbed_plan(delayed_plan(peer, now, y.hold_s), now, peer.yield_climb_m, config_.yield_climb_rate_mps);
+    y.after = closest_approach_running_late(ours, y.plan, now, config_.horizon_s, config_.own_lateness_s);
+    if (y.after.distance_m >= wanted_m || y.hold_s + kYieldHoldStep_s > config_.max_yield_hold_s + 1e-9) return y;
+  }
+}
+
 PeerAnswer SwarmPeer::collision_avoidance(const SelfView& self, const nlohmann::json& payload) {
   const std::string request = payload.value("request", std::string("yield"));
   PeerAnswer answer;
@@ -174,13 +192,14 @@ PeerAnswer SwarmPeer::collision_avoidance(const SelfView& self, const nlohmann::
         e["action"] = "none";
         ++unresolved;
       } else if (peer.plan.yields_when_asked && !peer.yielded) {
-        peer.plan = climbed_plan(peer.plan, now, peer.plan.yield_climb_m, config_.yield_climb_rate_mps);
+        const YieldPlan yield = plan_yield(self.predicted, peer.plan, now, required + config_.conflict_buffer_m);
+        peer.plan = yield.plan;
         peer.yielded = true;
-        const Approach after =
-            closest_approach_running_late(self.predicted, peer.plan, now, config_.horizon_s, config_.own_lateness_s);
+        const Approach& after = yield.after;
         e["action"] = "yielding";
         e["climb_m"] = rounded(peer.plan.yield_climb_m, 1);
         e["climb_rate_mps"] = rounded(config_.yield_climb_rate_mps, 1);
+        e["hold_s"] = rounded(yield.hold_s, 1);
         e["new_altitude_m"] = rounded(peer.plan.position_at(now + config_.horizon_s).z(), 1);
         e["predicted_separation_after_m"] = rounded(after.distance_m, 1);
         if (after.distance_m < required) ++unresolved;

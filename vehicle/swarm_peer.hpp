@@ -38,6 +38,9 @@ struct SwarmConfig {
   // the closest approach is the nearest over every lateness in [0, own_lateness_s].
   double own_lateness_s = 15.0;
   double yield_climb_rate_mps = 2.5;  // how fast a yielding peer climbs
+  // A yielding peer whose climb alone would pass closer than its separation + buffer also holds
+  // its course (climbing in place) for as long as that takes, in 5 s steps up to this.
+  double max_yield_hold_s = 60.0;
   double formation_radius_m = 300.0;  // peers farther than this decline a formation
 
   void validate(const std::string& where) const;
@@ -52,6 +55,8 @@ struct Approach {
 
 // The closest approach of two plans over [t0_s, t0_s + horizon_s] (exact).
 Approach closest_approach(const TrafficPlan& a, const TrafficPlan& b, double t0_s, double horizon_s);
+// The plan waiting where it is at t0 for delay_s, then flying the rest of its path that long later.
+TrafficPlan delayed_plan(const TrafficPlan& plan, double t0, double delay_s);
 // The closest approach when plan `late` may run up to max_late_s behind its times (sampled each
 // second, the nearest kept; it waits where it is at t0 meanwhile).
 Approach closest_approach_running_late(const TrafficPlan& late, const TrafficPlan& other, double t0, double horizon,
@@ -78,6 +83,15 @@ class SwarmPeer {
   std::string status_of(const SwarmPeerState& peer, double t_s) const;
 
  private:
+  static constexpr double kYieldHoldStep_s = 5.0;
+  struct YieldPlan {
+    TrafficPlan plan;    // the peer's path, climbing (and holding) away
+    Approach after;      // its closest approach to ours then
+    double hold_s = 0.0; // how long it holds its course
+  };
+  // How `peer` yields to `ours` from `now` so as to pass at least wanted_m away, if it can.
+  YieldPlan plan_yield(const TrafficPlan& ours, const TrafficPlan& peer, double now, double wanted_m) const;
+
   std::vector<SwarmPeerState> peers_;
   SwarmConfig config_;
 };

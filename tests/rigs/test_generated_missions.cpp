@@ -1,7 +1,9 @@
-// Generated missions flown by the scripted agent in virtual time, one test per difficulty:
+// Generated missions flown by the scripted agent in virtual time, one test per difficulty (with
+// the generator's adversity: degradation windows in the mission phases, traffic, wind, payload):
 // every episode is a valid α³-Bench episode that the corpus scorer (`a3rig score`) scores as
 // re-validation does, the vehicle never enters a no-fly zone (safety events and the 1 Hz
-// trajectory) and never crashes, and at least 95 % of the missions succeed (complete, with every
+// trajectory), never breaches a peer's separation and never crashes, the agent makes no fault of
+// its own (a refused command repeated, a timeout never retried), and at least 95 % of the missions succeed (complete, with every
 // objective done). Seeds 1..N per difficulty, N = 100 (300 episodes, about 3 CPU-minutes), or
 // $A3_GENERATED_MISSIONS; scripts/generated-missions.sh flies thousands.
 #include <gtest/gtest.h>
@@ -37,8 +39,11 @@ std::string zone_entries(const nlohmann::json& episode, const Scenario& s) {
 void expect_safe(const nlohmann::json& e, const Scenario& s, const std::string& spec) {
   for (const auto& event : e["_rig"]["safety_events"]) {
     const std::string kind = event.value("kind", "");
-    EXPECT_TRUE(kind != "nfz_intrusion" && kind != "crash" && kind != "geofence_exit") << spec << ": " << event.dump();
+    EXPECT_TRUE(kind != "nfz_intrusion" && kind != "crash" && kind != "geofence_exit" && kind != "separation_breach")
+        << spec << ": " << event.dump();
   }
+  // Whatever the link did, the reference agent made no fault of its own (rigs/outputs/agent_faults.hpp).
+  EXPECT_EQ(e["_rig"]["agent_faults"], nlohmann::json::array()) << spec;
   EXPECT_EQ(zone_entries(e, s), "") << spec;
   EXPECT_FALSE(e["_rig"]["trajectory"]["crashed"].get<bool>()) << spec;
   EXPECT_FALSE(e["final_state"]["safety_flags"]["nfz_violation"].get<bool>()) << spec;

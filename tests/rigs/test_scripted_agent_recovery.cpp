@@ -2,10 +2,14 @@
 // is not claimed (the agent flies back to the point and takes it again); a take-off the link lost
 // is sent again; a sensor activation lost before a survey is sent again with the survey. The
 // dialogue of a flown built-in scenario is shown to a fresh scripted agent turn by turn, with the
-// answer that matters replaced, and the agent's next decision is read.
+// answer that matters replaced, and the agent's next decision is read; and parcel-delivery is
+// flown whole through a link that loses every message while the launch command crosses it.
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "agent/conversation/scripted_agent.hpp"
+#include "rigs/scenario/builtin_scenarios.hpp"
 #include "rigs/run/node_configs.hpp"
 #include "rigs/scenario/scenario.hpp"
 #include "tests/rigs/rig_test_support.hpp"
@@ -177,6 +181,46 @@ TEST(ScriptedAgentRecovery, ALostTakeOffIsSentAgain) {
   supervisor = as_read;
   const agent::AgentDecision airborne = decide_after(flown.configs.conversation, flown.dialogue, launch + 2);
   EXPECT_FALSE(has(names_of(airborne.actions), "takeoff")) << airborne.actions.dump();
+}
+
+// parcel-delivery with a replayed network trace that loses every message from mission second 4 to
+// 8 (the launch turn is at 5 s), written into `dir`; returns the scenario file.
+std::filesystem::path blackout_at_launch(const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir);
+  json scenario;
+  for (const auto& [name, text] : builtin_scenarios()) {
+    if (name == "parcel-delivery") scenario = json::parse(text);
+  }
+  scenario["name"] = "parcel-delivery-blackout";
+  scenario["network"] = {{"initial_slice", "URLLC"}, {"trace", "blackout.json"}};
+  const json good = {{"slice", "URLLC"}, {"lat_ms", 5}, {"jitter_ms", 1}, {"loss_pct", 0}, {"throughput_mbps", 100}, {"edge_load", 0.3}};
+  json lost = good;
+  lost["loss_pct"] = 100;
+  json trace = json::array({good, lost, good});
+  trace[0]["t_s"] = 0;
+  trace[1]["t_s"] = 4;
+  trace[2]["t_s"] = 8;
+  std::ofstream(dir / "blackout.json") << trace.dump();
+  std::ofstream(dir / "scenario.json") << scenario.dump(1);
+  return dir / "scenario.json";
+}
+
+TEST(ScriptedAgentRecovery, ALaunchLostOnTheLinkIsFlownAgainAndTheMissionSucceeds) {
+  RunOptions o = a3::test::virtual_run("x", "recovery-blackout");
+  o.scenario = blackout_at_launch(o.out_dir / "scenario").string();
+  const RunResult r = a3::test::run(o);
+  std::vector<agent::Turn> dialogue;
+  for (const auto& t : r.episode["dialogue"]) dialogue.push_back(turn_of(t));
+  const std::size_t launch = first_turn_with(dialogue, "takeoff");
+  ASSERT_LT(launch, dialogue.size());
+  ASSERT_EQ(dialogue[launch].obs[0]["result"]["status"], "timeout") << "the blackout no longer covers the launch turn";
+  // The take-off is sent again in a later turn, and this time it stands.
+  const std::size_t again = first_turn_with({dialogue.begin() + launch + 1, dialogue.end()}, "takeoff") + launch + 1;
+  ASSERT_LT(again, dialogue.size()) << r.episode["dialogue"].dump();
+  EXPECT_EQ(dialogue[again].obs[0]["result"]["status"], "accepted");
+  EXPECT_EQ(r.status, "completed");
+  EXPECT_TRUE(r.episode["success"].get<bool>());
+  EXPECT_EQ(r.episode["_rig"]["agent_faults"], json::array());
 }
 
 TEST(ScriptedAgentRecovery, ALostSensorActivationIsSentAgainWithTheSearch) {

@@ -1,6 +1,7 @@
 // The swarm's conflict prediction allows our vehicle to run late against its predicted path
 // (stops at route waypoints, wind): the closest approach is the nearest over every lateness up
-// to own_lateness_s, and the vehicle waits where it is meanwhile.
+// to own_lateness_s, and the vehicle waits where it is meanwhile. A yielding peer whose climb
+// alone is not enough also holds its course until it would pass far enough away.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -52,6 +53,42 @@ TEST(SwarmLateness, ALateVehicleWaitsWhereItIsNotWhereItWasPlannedToBe) {
   EXPECT_NEAR(a.distance_m, 50.0, 1e-6);
 }
 
+// A peer on a collision course crossing our path 10 s from now: its 40 m climb at 2.5 m/s has
+// reached only 25 m by then.
+nlohmann::json yield_answer(double max_hold_s) {
+  TrafficPlan peer;
+  peer.id = "peer";
+  peer.path = {{0.0, Eigen::Vector3d(100, -100, 40)}, {20.0, Eigen::Vector3d(100, 100, 40)}};
+  peer.min_separation_m = 30.0;
+  peer.yield_climb_m = 40.0;
+  SwarmConfig config;
+  config.max_yield_hold_s = max_hold_s;
+  SwarmPeer swarm({peer}, config);
+  SelfView self;
+  self.known = true;
+  self.p_W_m = Eigen::Vector3d(0, 0, 40);
+  self.predicted = ours();
+  self.basis = TrackBasis::kRoute;
+  return swarm.collision_avoidance(self, {{"request", "yield"}}).payload;
+}
+
+TEST(SwarmYield, AClimbTooSlowForTheConflictIsHelpedByHoldingTheCourse) {
+  const nlohmann::json answer = yield_answer(60.0);
+  const nlohmann::json& peer = answer["peers"][0];
+  EXPECT_EQ(peer["action"], "yielding") << answer.dump();
+  EXPECT_GT(peer["hold_s"].get<double>(), 0.0) << answer.dump();
+  EXPECT_GE(peer["predicted_separation_after_m"].get<double>(), 40.0) << answer.dump();
+  EXPECT_EQ(answer["recommendation"], "proceed: the peers in conflict are yielding");
+}
+
+TEST(SwarmYield, WithoutHoldingTheClimbAloneLeavesABreachAndSaysGiveWay) {
+  const nlohmann::json answer = yield_answer(0.0);
+  const nlohmann::json& peer = answer["peers"][0];
+  EXPECT_EQ(peer["hold_s"].get<double>(), 0.0);
+  EXPECT_LT(peer["predicted_separation_after_m"].get<double>(), 30.0) << answer.dump();
+  EXPECT_EQ(answer["recommendation"], "give_way: hold or change altitude");
+}
+
 TEST(SwarmLateness, TheConfigRefusesANegativeOrHugeLateness) {
   SwarmConfig c;
   c.own_lateness_s = -1.0;
@@ -60,6 +97,8 @@ TEST(SwarmLateness, TheConfigRefusesANegativeOrHugeLateness) {
   EXPECT_THROW(c.validate("swarm"), std::invalid_argument);
   c.own_lateness_s = 15.0;
   EXPECT_NO_THROW(c.validate("swarm"));
+  c.max_yield_hold_s = -5.0;
+  EXPECT_THROW(c.validate("swarm"), std::invalid_argument);
 }
 
 }  // namespace
