@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Flies N generated missions per difficulty (easy, medium, hard) with the scripted agent in
 # virtual time through `a3rig sweep --scenarios gen:N:<difficulty>` (parallel, with progress,
-# resumable), then prints the success rate per difficulty and the missions that failed.
+# resumable), then prints the success rate per difficulty, how many failures were the agent's
+# own (results.csv agent_failure) and the missions that failed.
 #   scripts/generated-missions.sh [N=20] [extra a3rig sweep arguments, e.g. -j 2 --agents llm]
 # Output: out/generated-missions/<difficulty>/ (results.csv, cells/gen_<seed>_<difficulty>/...).
 set -euo pipefail
@@ -22,9 +23,10 @@ for difficulty in easy medium hard; do
     --out "$out/$difficulty" "$@" >"$out/$difficulty.log" || true
   line=$(awk -F, -v d="$difficulty" '
     NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
-    { total++; if ($col["success"] == "true" || $col["success"] == "1") ok++; else failed = failed " " $col["scenario"] }
-    END { printf "%-6s %3d / %3d succeeded (%5.1f %%)%s", d, ok, total, total ? 100 * ok / total : 0,
-          failed == "" ? "" : "; failed:" failed }' "$out/$difficulty/results.csv")
+    { total++; if ($col["success"] == "true" || $col["success"] == "1") ok++; else failed = failed " " $col["scenario"]
+      if ($col["agent_failure"] == "1") agent++ }
+    END { printf "%-6s %3d / %3d succeeded (%5.1f %%), %d failed by a fault of the agent%s", d, ok, total,
+          total ? 100 * ok / total : 0, agent, failed == "" ? "" : "; failed:" failed }' "$out/$difficulty/results.csv")
   echo "$line"
   summary+=("$line")
 done

@@ -67,13 +67,15 @@ ScriptedAgent::Leg area_leg(const Objective& o) {
 
 ScriptedAgent::Leg image_leg(const Objective& o) {
   ScriptedAgent::Leg leg;
+  // The sensor is switched on with the flight there, so a lost activation is known (and made
+  // good) before the capture, not by a failed capture.
+  if (o.sensor != "rgb") leg.actions.push_back(mcp("activate_sensor", {{"sensor", o.sensor}}));
   leg.actions.push_back(mcp("set_waypoint", {{"x", o.point.x()}, {"y", o.point.y()}, {"z", o.altitude_m}}));
   leg.intent = "navigate_to_target";
   leg.text = "Flying to " + o.id + " to image it.";
   leg.end_W_m = Eigen::Vector3d(o.point.x(), o.point.y(), o.altitude_m);
   leg.anchor_W_m = leg.end_W_m;
   leg.capture = true;
-  if (o.sensor != "rgb") leg.capture_actions.push_back(mcp("activate_sensor", {{"sensor", o.sensor}}));
   leg.capture_actions.push_back(mcp("capture_image", {{"sensor", o.sensor}}));
   leg.capture_intent = "capture_target";
   leg.capture_text = "At " + o.id + ", settled at the commanded altitude: capturing it.";
@@ -354,7 +356,16 @@ void ScriptedAgent::add_leg_motion(const AgentContext& c, Choice* choice) {
 void ScriptedAgent::add_return(const AgentContext& c, Choice* choice) {
   choice->actions.push_back(mcp("return_to_home"));
   choice->intent += std::string(choice->intent.empty() ? "" : "+") + "return_to_home";
-  choice->text += std::string(choice->text.empty() ? "" : " ") + "Mission tasks done: returning home to land.";
+  // Say what is left undone rather than claim the mission done: objectives given up, a capture
+  // that failed, and every leg not reached.
+  std::vector<std::string> undone = given_up_;
+  for (std::size_t i = leg_; i < legs_.size(); ++i) {
+    if (!legs_[i].is_route) undone.push_back(legs_[i].objective_id);
+  }
+  std::string list;
+  for (const auto& id : undone) list += (list.empty() ? "" : ", ") + id;
+  choice->text += std::string(choice->text.empty() ? "" : " ") +
+                  (undone.empty() ? "Mission tasks done: returning home to land." : "Returning home to land; not done: " + list + ".");
   returned_ = true;
   return_turn_index_ = static_cast<int>(c.dialogue->size());
 }
@@ -373,6 +384,13 @@ ScriptedAgent::Choice ScriptedAgent::after_leg_done(const AgentContext& c, int a
   Leg& done = legs_[leg_];
   if (done.capture) {
     choice = {done.capture_intent, done.capture_text, done.capture_actions};
+    // Its sensor's activation, sent with the leg, was not confirmed: activate it again first.
+    const Turn* sent = turn_at(c, leg_turn_index_);
+    if (sent != nullptr && !first_failure(*sent, {"activate_sensor"}).empty()) {
+      for (const auto& a : done.actions) {
+        if (a.value("name", "") == "activate_sensor") choice.actions.insert(choice.actions.begin(), a);
+      }
+    }
     ++done.captures;
     capture_turn_index_ = static_cast<int>(c.dialogue->size());
     captured_leg_ = leg_;
@@ -413,6 +431,7 @@ ScriptedAgent::Choice ScriptedAgent::after_refusal(const AgentContext& c, int ag
     return choice;
   }
   // Refused again and again: give this objective up and go on with the next.
+  if (!leg.is_route) given_up_.push_back(leg.objective_id);
   ++leg_;
   Choice choice{"", "The gate keeps refusing " + leg.objective_id + "; moving on.", {}};
   if (leg_ < legs_.size() && agent_turns_left > 1) {
@@ -426,10 +445,15 @@ ScriptedAgent::Choice ScriptedAgent::after_refusal(const AgentContext& c, int ag
 std::optional<ScriptedAgent::Choice> ScriptedAgent::retake_failed_capture(const AgentContext& c, int agent_turns_left) {
   const Turn* sent = turn_at(c, capture_turn_index_);
   if (sent == nullptr || !capture_failed(*sent) || returned_) return std::nullopt;
-  capture_turn_index_ = -1;
   Leg& leg = legs_[captured_leg_];
+  // Only the answer was lost if the supervisor has confirmed the objective since: it stands.
+  if (supervisor_confirmed(c, capture_turn_index_, leg.objective_id)) return std::nullopt;
+  capture_turn_index_ = -1;
   // Back to the point, then the capture there with the way home: two agent turns at least.
-  if (leg.captures >= 2 || agent_turns_left < 2) return std::nullopt;
+  if (leg.captures >= 2 || agent_turns_left < 2) {
+    given_up_.push_back(leg.objective_id);  // the capture failed and cannot be taken again
+    return std::nullopt;
+  }
   leg_ = captured_leg_;
   leg.sends = 0;
   Choice choice{"", "The capture at " + leg.objective_id + " was not confirmed (" + capture_failure(*sent) +

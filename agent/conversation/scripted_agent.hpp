@@ -98,6 +98,7 @@ class ScriptedAgent final : public Agent {
   int return_turn_index_ = -1;   // dialogue index of the turn that sent return_to_home
   int capture_turn_index_ = -1;  // dialogue index of the turn that sent the last capture
   std::size_t captured_leg_ = 0; // the leg it captured
+  std::vector<std::string> given_up_;  // objectives it gave up (refused again and again, a failed capture)
 };
 
 // The SPEC §2 "hard" test on an n_t object.

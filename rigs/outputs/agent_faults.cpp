@@ -2,6 +2,7 @@
 #include "rigs/outputs/agent_faults.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <map>
 #include <set>
 #include <string>
@@ -20,13 +21,13 @@ std::string answer_status(const nlohmann::json& obs) {
              : "timeout";
 }
 
-// An MCP tool that changes the vehicle (motion, sensor, network), by the catalogue.
-bool changes_vehicle(const nlohmann::json& action) {
+// The catalogue's kind of an MCP action's tool ("motion", "sensor", "network", "query"), or "".
+std::string tool_kind(const nlohmann::json& action) {
   if (!action.is_object() || action.value("type", "") != "mcp" || !action.contains("name") || !action["name"].is_string()) {
-    return false;
+    return "";
   }
   const agent::McpToolSpec* tool = agent::ToolCatalog::builtin().find_tool(action["name"].get<std::string>());
-  return tool != nullptr && tool->kind != "query";
+  return tool != nullptr ? tool->kind : "";
 }
 
 std::string command_key(const nlohmann::json& action) {
@@ -38,6 +39,7 @@ struct Scan {
   std::map<std::string, int> refused_at;      // command key -> turn first refused
   std::set<std::string> reported_refusals;
   std::map<std::string, int> timed_out_at;    // tool name -> turn of a timeout not yet sent again
+  std::map<std::string, std::string> kind_of; // tool name -> its catalogue kind
   int last_agent_turn = -1;
 
   void add(const char* kind, int turn, const std::string& detail) {
@@ -59,12 +61,23 @@ struct Scan {
     const nlohmann::json& actions = t.contains("actions") && t["actions"].is_array() ? t["actions"] : nlohmann::json::array();
     const nlohmann::json& obs = t.contains("obs") && t["obs"].is_array() ? t["obs"] : nlohmann::json::array();
     for (std::size_t i = 0; i < actions.size(); ++i) {
-      if (!changes_vehicle(actions[i])) continue;
+      const std::string kind = tool_kind(actions[i]);
+      if (kind.empty() || kind == "query") continue;
       const std::string name = actions[i]["name"].get<std::string>();
+      kind_of[name] = kind;
       timed_out_at.erase(name);  // sent again
       const std::string status = answer_status(i < obs.size() ? obs[i] : nlohmann::json());
       if (status == "refused") see_refusal(actions[i], turn);
-      if (status == "timeout") timed_out_at[name] = turn;
+      if (status == "timeout") {
+        timed_out_at[name] = turn;
+      } else if (kind == "motion" && status != "refused" && status != "error") {
+        forget_kind("motion");  // the vehicle took a later motion command: the lost ones are moot
+      }
+    }
+  }
+  void forget_kind(const std::string& kind) {
+    for (auto it = timed_out_at.begin(); it != timed_out_at.end();) {
+      it = kind_of[it->first] == kind ? timed_out_at.erase(it) : std::next(it);
     }
   }
   void finish() {

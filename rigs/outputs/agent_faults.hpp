@@ -4,7 +4,9 @@
 //                        arguments and refused again: the agent did not re-plan;
 //   timeout_not_retried  a command that changes the vehicle (an MCP tool whose catalogue kind is
 //                        not "query") answered timeout (lost, or unanswered) and never sent again
-//                        although the agent had turns after it.
+//                        although the agent had turns after it; a motion command is settled
+//                        too by any later motion command the vehicle took (a lost take-off
+//                        followed by an accepted leg: the vehicle did take off).
 // An episode that failed with such a fault is counted as an agent-caused failure in a sweep.
 #pragma once
 

@@ -60,6 +60,11 @@ TEST(AgentFaults, TimeoutsThatAreNotFaults) {
   EXPECT_TRUE(find_agent_faults(json{agent_turn(1, {mcp("read_telemetry")}, {answered("read_telemetry", "ok")}),
                                      agent_turn(3, {sensor}, {answered("activate_sensor", "timeout")})})
                   .empty());
+  // A lost take-off followed by a leg the vehicle accepted: the vehicle did take off.
+  EXPECT_TRUE(find_agent_faults(json{agent_turn(1, {mcp("takeoff", {{"altitude_m", 30}}), kLegHome},
+                                                {answered("takeoff", "timeout"), answered("navigate_to", "accepted")}),
+                                     agent_turn(3, {mcp("read_telemetry")}, {answered("read_telemetry", "ok")})})
+                  .empty());
   // A query (it changes nothing) need not be repeated.
   EXPECT_TRUE(find_agent_faults(json{agent_turn(1, {mcp("read_telemetry")}, {answered("read_telemetry", "timeout")}),
                                      agent_turn(3, json::array(), json::array())})

@@ -19,15 +19,25 @@ namespace {
 
 using nlohmann::json;
 
-agent::Turn turn_of(const json& t) {
+agent::Turn turn_of(const json& t, const json& rig_turn) {
   agent::Turn turn;
   turn.number = t["turn"].get<int>();
   turn.speaker = t["speaker"].get<std::string>();
   turn.intent = t.value("intent", "");
+  turn.text = rig_turn.value("text", "");  // the words are kept in _rig.turns
   turn.actions = t.value("actions", json::array());
   turn.obs = t.value("obs", json::array());
   turn.net = t.value("net", json::object());
   return turn;
+}
+
+// The episode's dialogue as the agent was shown it.
+std::vector<agent::Turn> dialogue_of(const json& episode) {
+  std::vector<agent::Turn> dialogue;
+  for (std::size_t i = 0; i < episode["dialogue"].size(); ++i) {
+    dialogue.push_back(turn_of(episode["dialogue"][i], episode["_rig"]["turns"][i]));
+  }
+  return dialogue;
 }
 
 // The index of the first agent turn that captured an image and moved on in the same turn.
@@ -81,14 +91,15 @@ Flown fly(const std::string& scenario) {
   EXPECT_EQ(r.status, "completed");
   EXPECT_EQ(r.episode["_rig"]["agent_faults"], json::array()) << "the reference agent made a fault as flown";
   Flown flown{{}, make_rig_configs(load_scenario(scenario, a3::test::shared_dir()), o)};
-  for (const auto& t : r.episode["dialogue"]) flown.dialogue.push_back(turn_of(t));
+  flown.dialogue = dialogue_of(r.episode);
   return flown;
 }
 
 // Shows `dialogue` up to (not including) index `until` to a fresh agent, deciding each agent turn
 // as the rig would; returns the decision for the turn at `until`.
+// `last_max_turns` > 0: the turn budget the last decision sees (as if the dialogue were shorter).
 agent::AgentDecision decide_after(const agent::ConversationConfig& conversation, const std::vector<agent::Turn>& dialogue,
-                                  std::size_t until) {
+                                  std::size_t until, int last_max_turns = 0) {
   const agent::ToolCatalog& tools = agent::ToolCatalog::builtin();
   agent::ScriptedAgent scripted;
   std::vector<agent::Turn> shown;
@@ -103,7 +114,7 @@ agent::AgentDecision decide_after(const agent::ConversationConfig& conversation,
       c.tools = &tools;
       c.net = dialogue[i].net;
       c.turn_number = dialogue[i].number;
-      c.max_turns = conversation.max_turns;
+      c.max_turns = i == until && last_max_turns > 0 ? last_max_turns : conversation.max_turns;
       last = scripted.decide(c);
     }
     if (i < until) shown.push_back(dialogue[i]);
@@ -118,20 +129,23 @@ TEST(ScriptedAgentRecovery, ACaptureThatTimedOutIsTakenAgainAtThePoint) {
   const json& recorded = r.episode["dialogue"];
   const std::size_t capture = first_capture_turn(recorded);
   ASSERT_LT(capture + 2, recorded.size()) << "bridge-inspection no longer captures pier-1 with the next leg";
-  std::vector<agent::Turn> dialogue;
-  for (const auto& t : recorded) dialogue.push_back(turn_of(t));
+  std::vector<agent::Turn> dialogue = dialogue_of(r.episode);
   const RigConfigs configs = make_rig_configs(load_scenario("bridge-inspection", a3::test::shared_dir()), o);
 
   // As flown: the capture stood, so the next agent turn goes on (no flight back to pier-1).
   const agent::AgentDecision as_flown = decide_after(configs.conversation, dialogue, capture + 2);
   EXPECT_EQ(as_flown.text.find("take it again"), std::string::npos) << as_flown.text;
 
-  // The capture's answer lost on the link: the next agent turn flies back to pier-1 to retake it.
-  for (std::size_t i = 0; i < dialogue[capture].actions.size(); ++i) {
-    if (dialogue[capture].actions[i].value("name", "") == "capture_image") {
-      dialogue[capture].obs[i] = {{"tool", "capture_image"}, {"result", {{"status", "timeout"}}}};
-    }
-  }
+  // The capture's answer lost on the link, but the supervisor confirms pier-1 done: it stands.
+  replace_answer(&dialogue[capture], "capture_image", {{"status", "timeout"}});
+  ASSERT_EQ(dialogue[capture + 1].intent, "acknowledge_progress") << "the supervisor no longer confirms the capture";
+  const agent::AgentDecision confirmed = decide_after(configs.conversation, dialogue, capture + 2);
+  EXPECT_EQ(confirmed.text.find("take it again"), std::string::npos) << confirmed.text;
+
+  // Lost, and no confirmation (the supervisor only asks for status): the next agent turn flies
+  // back to pier-1 to retake it.
+  dialogue[capture + 1].intent = "request_status";
+  dialogue[capture + 1].text = "Status report, please.";
   const agent::AgentDecision retake = decide_after(configs.conversation, dialogue, capture + 2);
   EXPECT_NE(retake.text.find("capture_image timed out"), std::string::npos) << retake.text;
   const Eigen::Vector2d pier = configs.conversation.mission.objectives.front().point;
@@ -150,6 +164,13 @@ TEST(ScriptedAgentRecovery, ACaptureThatTimedOutIsTakenAgainAtThePoint) {
   }
   const agent::AgentDecision after_error = decide_after(configs.conversation, dialogue, capture + 2);
   EXPECT_NE(after_error.text.find("rgb is not active"), std::string::npos) << after_error.text;
+
+  // No turn left to take it again: the agent goes home and says pier-1 is not done, not "done".
+  const int last_turn = dialogue[capture + 2].number;
+  const agent::AgentDecision home = decide_after(configs.conversation, dialogue, capture + 2, last_turn);
+  const std::string pier_id = configs.conversation.mission.objectives.front().id;
+  EXPECT_EQ(home.text.find("Mission tasks done"), std::string::npos) << home.text;
+  EXPECT_NE(home.text.find("not done: " + pier_id), std::string::npos) << home.text;
 }
 
 TEST(ScriptedAgentRecovery, ALostTakeOffIsSentAgain) {
@@ -209,8 +230,7 @@ TEST(ScriptedAgentRecovery, ALaunchLostOnTheLinkIsFlownAgainAndTheMissionSucceed
   RunOptions o = a3::test::virtual_run("x", "recovery-blackout");
   o.scenario = blackout_at_launch(o.out_dir / "scenario").string();
   const RunResult r = a3::test::run(o);
-  std::vector<agent::Turn> dialogue;
-  for (const auto& t : r.episode["dialogue"]) dialogue.push_back(turn_of(t));
+  const std::vector<agent::Turn> dialogue = dialogue_of(r.episode);
   const std::size_t launch = first_turn_with(dialogue, "takeoff");
   ASSERT_LT(launch, dialogue.size());
   ASSERT_EQ(dialogue[launch].obs[0]["result"]["status"], "timeout") << "the blackout no longer covers the launch turn";
