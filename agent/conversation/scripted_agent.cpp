@@ -100,13 +100,6 @@ const Turn* turn_at(const AgentContext& c, int i) {
   return i >= 0 && i < static_cast<int>(c.dialogue->size()) ? &(*c.dialogue)[i] : nullptr;
 }
 
-// The status answered to the turn's i-th action: "timeout" when it went unanswered (lost).
-std::string answer_status(const Turn& t, std::size_t i) {
-  const nlohmann::json* o = i < t.obs.size() ? &t.obs[i] : nullptr;
-  const bool answered = o != nullptr && o->is_object() && o->contains("result") && (*o)["result"].is_object();
-  return answered ? (*o)["result"].value("status", "") : "timeout";
-}
-
 bool failed(const std::string& status) { return status == "refused" || status == "error" || status == "timeout"; }
 
 // "accepted" when every motion command of the turn was, else the first refusal ("refused",
@@ -114,7 +107,7 @@ bool failed(const std::string& status) { return status == "refused" || status ==
 std::string motion_answer(const Turn& t) {
   for (std::size_t i = 0; i < t.actions.size(); ++i) {
     if (!is_motion(t.actions[i])) continue;
-    const std::string status = answer_status(t, i);
+    const std::string status = t.answer_status(i);
     if (failed(status)) return status;
   }
   return "accepted";
@@ -126,9 +119,13 @@ std::string first_failure(const Turn& t, const std::vector<std::string>& names) 
   for (std::size_t i = 0; i < t.actions.size(); ++i) {
     const std::string name = t.actions[i].value("name", "");
     if (std::find(names.begin(), names.end(), name) == names.end()) continue;
-    const std::string status = answer_status(t, i);
+    const std::string status = t.answer_status(i);
     if (status == "timeout") return name + " timed out";
-    if (failed(status)) return name + ": " + t.obs[i]["result"].value("error", status);
+    if (!failed(status)) continue;
+    const nlohmann::json& o = t.obs[i];  // answered, so present
+    const nlohmann::json& answer = o.contains("result") ? o["result"] : o;
+    const bool said = answer.contains("error") && answer["error"].is_string();
+    return name + ": " + (said ? answer["error"].get<std::string>() : status);
   }
   return "";
 }

@@ -42,6 +42,14 @@ struct Turn {
 
   // The α³-Bench turn object.
   nlohmann::json to_json() const;
+  // The status answered to the i-th action (observation_status of its observation; "timeout"
+  // when it has none).
+  std::string answer_status(std::size_t i) const;
 };
+
+// The status an observation answers with: an MCP tool's `result.status`, an A2A answer's
+// `status`; "timeout" when there is no answer (lost: the conversation writes a timeout
+// observation, or none at all), "" when answered without a status (read_telemetry).
+std::string observation_status(const nlohmann::json& obs);
 
 }  // namespace a3::agent

@@ -7,19 +7,11 @@
 #include <set>
 #include <string>
 
+#include "agent/conversation/turn.hpp"
 #include "agent/tool_catalog.hpp"
 
 namespace a3::rigs {
 namespace {
-
-// The status answered to an action: the MCP result's, or the A2A answer's; "timeout" when none.
-std::string answer_status(const nlohmann::json& obs) {
-  if (!obs.is_object()) return "timeout";
-  const nlohmann::json& answer = obs.contains("result") ? obs["result"] : obs;
-  return answer.is_object() && answer.contains("status") && answer["status"].is_string()
-             ? answer["status"].get<std::string>()
-             : "timeout";
-}
 
 // The catalogue's kind of an MCP action's tool ("motion", "sensor", "network", "query"), or "".
 std::string tool_kind(const nlohmann::json& action) {
@@ -66,7 +58,7 @@ struct Scan {
       const std::string name = actions[i]["name"].get<std::string>();
       kind_of[name] = kind;
       timed_out_at.erase(name);  // sent again
-      const std::string status = answer_status(i < obs.size() ? obs[i] : nlohmann::json());
+      const std::string status = agent::observation_status(i < obs.size() ? obs[i] : nlohmann::json());
       if (status == "refused") see_refusal(actions[i], turn);
       if (status == "timeout") {
         timed_out_at[name] = turn;
