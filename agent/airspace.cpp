@@ -6,32 +6,6 @@
 
 namespace a3::agent {
 
-bool NoFlyZone::contains(const Eigen::Vector3d& p) const {
-  if (p.z() < floor_m || p.z() > ceiling_m) return false;
-  return clearance_m(p.head<2>()) < 0.0;
-}
-
-double NoFlyZone::clearance_m(const Eigen::Vector2d& p) const {
-  if (polygon.empty()) return (p - centre).norm() - radius_m;
-  const double d = common::polygon_edge_distance(polygon, p);
-  return common::polygon_contains(polygon, p) ? -d : d;
-}
-
-bool NoFlyZone::crossed_by(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double margin_m) const {
-  // Altitude: the segment must reach the zone's vertical extent somewhere.
-  if (std::max(a.z(), b.z()) < floor_m || std::min(a.z(), b.z()) > ceiling_m) return false;
-  const Eigen::Vector2d a2 = a.head<2>(), b2 = b.head<2>();
-  if (polygon.empty()) return common::segment_enters_circle(centre, radius_m + margin_m, a2, b2);
-  if (common::segment_enters_polygon(polygon, a2, b2)) return true;
-  if (margin_m <= 0.0) return false;
-  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
-    if (common::segment_distance(polygon[i], a2, b2) <= margin_m) return true;
-    if (common::segment_distance(a2, polygon[j], polygon[i]) <= margin_m) return true;
-    if (common::segment_distance(b2, polygon[j], polygon[i]) <= margin_m) return true;
-  }
-  return false;
-}
-
 Eigen::Vector3d TrafficPlan::position_at(double t) const {
   if (path.empty()) return Eigen::Vector3d::Zero();
   if (t <= path.front().t_s) return path.front().p_W_m;

@@ -10,25 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "common/no_fly_zone.hpp"
 #include "common/polygon.hpp"
 
 namespace a3::agent {
 
-struct NoFlyZone {
-  std::string id;
-  common::Polygon2d polygon;      // empty: a cylinder
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-  double radius_m = 0.0;
-  double floor_m = -std::numeric_limits<double>::infinity();
-  double ceiling_m = std::numeric_limits<double>::infinity();
-
-  bool contains(const Eigen::Vector3d& p) const;
-  // Horizontal distance to the zone's boundary: positive outside, negative inside.
-  double clearance_m(const Eigen::Vector2d& p) const;
-  // Whether the straight segment a→b passes through the zone (horizontally within `margin_m`
-  // of it, at an altitude between floor and ceiling somewhere along the segment).
-  bool crossed_by(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double margin_m = 0.0) const;
-};
+// The zone geometry is shared with the flight controller (common/no_fly_zone.hpp).
+using NoFlyZone = common::NoFlyZone;
 
 struct TrafficWaypoint {
   double t_s = 0.0;

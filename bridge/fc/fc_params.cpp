@@ -76,6 +76,7 @@ FcParams fc_params_from_json(const nlohmann::json& j, const std::string& where, 
     read(*f, "low_battery_return_pct", w, p.failsafe.low_battery_return_pct, false);
     read(*f, "low_battery_land_pct", w, p.failsafe.low_battery_land_pct, false);
     read(*f, "fence_margin_m", w, p.failsafe.fence_margin_m, false);
+    read(*f, "nfz_stop_margin_m", w, p.failsafe.nfz_stop_margin_m, false);
     read(*f, "return_altitude_m", w, p.failsafe.return_altitude_m, false);
     if (p.failsafe.low_battery_land_pct > p.failsafe.low_battery_return_pct) {
       throw InputError(w + ": low_battery_land_pct must not exceed low_battery_return_pct");

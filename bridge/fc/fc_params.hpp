@@ -7,8 +7,10 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "bridge/fc/geofence.hpp"
+#include "common/no_fly_zone.hpp"
 
 namespace a3::bridge {
 
@@ -51,6 +53,7 @@ struct FcFailsafeParams {
   double low_battery_return_pct = 25.0;
   double low_battery_land_pct = 12.0;
   double fence_margin_m = 5.0;      // targets must stay this far inside the geofence
+  double nfz_stop_margin_m = 2.0;   // the brake stops this far outside a no-fly zone
   double return_altitude_m = 30.0;  // minimum altitude of the return leg
 };
 
@@ -71,6 +74,7 @@ struct FcParams {
   FcGotoParams go_to;
   FcFailsafeParams failsafe;
   Geofence fence;               // from the scenario; unbounded by default
+  std::vector<common::NoFlyZone> no_fly_zones;  // from the scenario: braked before, like the fence
   double control_rate_hz = 250.0;
   double status_rate_hz = 10.0;
 };

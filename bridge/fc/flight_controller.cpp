@@ -13,6 +13,7 @@ constexpr double kArrivedSpeed_mps = 0.3;
 constexpr double kOnGroundAltitude_m = 0.3;
 constexpr double kLandDetectAltitude_m = 2.0;     // the estimate may be off by this much at touchdown
 constexpr double kLandDetectThrustShare = 0.75;   // of the hover thrust
+constexpr double kVelocityResponse_s = 0.5;       // how long the velocity loop takes to follow a brake
 
 bool finite(const Eigen::Vector3d& v) { return v.allFinite(); }
 
@@ -331,6 +332,30 @@ Eigen::Vector3d FlightController::brake_before_fence(const Eigen::Vector3d& p_W,
   return out;
 }
 
+Eigen::Vector3d FlightController::brake_before_zones(const Eigen::Vector3d& p_W, const Eigen::Vector3d& v_W,
+                                                     const Eigen::Vector3d& v_sp) const {
+  const double margin_m = params_.failsafe.nfz_stop_margin_m;
+  const Eigen::Vector2d xy(p_W.x(), p_W.y());
+  Eigen::Vector3d out = v_sp;
+  for (const common::NoFlyZone& zone : params_.no_fly_zones) {
+    if (!zone.spans_altitude(p_W.z(), margin_m)) continue;
+    const double clearance_m = zone.clearance_m(xy);
+    const Eigen::Vector2d away = zone.away_direction(xy);
+    // The room left once the velocity loop has answered (it lags the setpoint by about
+    // kVelocityResponse_s); beyond the stop point: back out, as a position loop would.
+    const double moving_in_mps = std::max(-(v_W.x() * away.x() + v_W.y() * away.y()), 0.0);
+    const double room_m = clearance_m - margin_m - moving_in_mps * kVelocityResponse_s;
+    const double allowed = room_m >= 0.0 ? std::sqrt(2.0 * params_.limits.brake_accel_mps2 * room_m)
+                                         : params_.gains.position_p * room_m;
+    const double toward = -(out.x() * away.x() + out.y() * away.y());
+    if (toward > allowed) {
+      out.x() += (toward - allowed) * away.x();
+      out.y() += (toward - allowed) * away.y();
+    }
+  }
+  return out;
+}
+
 FcOutput FlightController::step(double t_s) {
   const double dt = last_step_t_s_ < 0.0 ? 0.0 : std::clamp(t_s - last_step_t_s_, 0.0, 0.05);
   last_step_t_s_ = t_s;
@@ -387,7 +412,7 @@ FcOutput FlightController::step(double t_s) {
       return out;
   }
   if (status_.mode != FcMode::kDisarmed && status_.mode != FcMode::kEmergency) {
-    v_sp = brake_before_fence(e.p_W_m, v_sp);
+    v_sp = brake_before_zones(e.p_W_m, e.v_W_mps, brake_before_fence(e.p_W_m, v_sp));
   }
   const ThrustSetpoint ts = position_.thrust(e.v_W_mps, v_sp, yaw_sp_rad_, dt, integrate_xy);
   if (status_.mode == FcMode::kLand) {

@@ -94,6 +94,11 @@ class FlightController {
   void arm(const EstimatedState& e);
   void check_failsafes(double t_s, const EstimatedState& e);
   Eigen::Vector3d brake_before_fence(const Eigen::Vector3d& p_W, const Eigen::Vector3d& v_sp) const;
+  // Takes away the velocity toward each no-fly zone at the vehicle's altitude beyond what the
+  // brake can stop before nfz_stop_margin_m outside it: the vehicle slides along the zone or
+  // holds at its edge instead of entering. Pushed inside, it may only move out.
+  Eigen::Vector3d brake_before_zones(const Eigen::Vector3d& p_W, const Eigen::Vector3d& v_W,
+                                     const Eigen::Vector3d& v_sp) const;
   std::string target_problem(const Eigen::Vector3d& target, FcRefusal* why) const;
   Eigen::Vector3d goto_leg_start(const EstimatedState& e) const;
   Eigen::Vector3d goto_velocity_setpoint(const Eigen::Vector3d& p_W, double speed_mps, double dt_s);

@@ -16,6 +16,7 @@
 #include "bridge/nodes/command_sources.hpp"
 #include "bridge/nodes/fc_node.hpp"
 #include "common/json_file.hpp"
+#include "common/no_fly_zone.hpp"
 #include "common/runtime.hpp"
 #include "dynamics/vehicle_params.hpp"
 #include "rigs/cli/command_registry.hpp"
@@ -23,6 +24,7 @@
 #include "rigs/cli/node_thread_loop.hpp"
 #include "rigs/cli/signal_stop.hpp"
 #include "rigs/run/fc_setup.hpp"
+#include "rigs/scenario/scenario_airspace.hpp"
 
 namespace a3::rigs {
 namespace {
@@ -39,6 +41,14 @@ struct FcArgs {
   NodePacing pacing;
 };
 
+// An a3rig scenario's no-fly zones (its top-level "airspace"); none in an episode or an
+// initial_state.
+std::vector<common::NoFlyZone> no_fly_zones_of_file(const std::string& path, const InitialState& state) {
+  const nlohmann::json doc = common::load_json_file(path);
+  if (!doc.is_object() || !doc.contains("airspace")) return {};
+  return parse_airspace(state, doc["airspace"], path + ": /airspace").no_fly_zones;
+}
+
 bridge::FcNodeConfig fc_config_from(const FcArgs& args) {
   bridge::FcNodeConfig config;
   dynamics::VehicleParams vehicle =
@@ -47,6 +57,7 @@ bridge::FcNodeConfig fc_config_from(const FcArgs& args) {
     const InitialState state = load_initial_state_file(args.scenario);
     vehicle = dynamics::with_payloads(vehicle, state.payloads);
     config.params.fence = geofence_from(state);
+    config.params.no_fly_zones = no_fly_zones_of_file(args.scenario, state);
   }
   config.params.vehicle = fc_vehicle_from_airframe(vehicle);
   if (!args.params.empty()) {
@@ -120,7 +131,8 @@ A3_REGISTER_COMMAND("52-node-fc", [](CLI::App& app) {
                   "the vehicle the fc is tuned for: a built-in airframe (iris, the default, or heavy-lift) or an "
                   "airframe JSON file; --params' vehicle section overrides it");
   cmd->add_option("--scenario", args->scenario,
-                  "α³-Bench episode or initial_state JSON: payload mass, geofence and altitude bounds")
+                  "a3rig scenario, α³-Bench episode or initial_state JSON: payload mass, geofence and altitude "
+                  "bounds, and a scenario's no-fly zones (the fc brakes before them)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--home", args->home, "ENU origin LAT,LON,HEIGHT (default 47.397742,8.545594,488); "
                                         "give the bridge the same one");

@@ -167,6 +167,15 @@ nlohmann::json trajectory_json(const RecordedEpisode& rec, bool crashed) {
           {"crashed", crashed}};
 }
 
+// The closest the vehicle came to each no-fly zone it flew beside (at the zone's altitudes).
+nlohmann::json zone_clearance_json(const RecordedEpisode& rec) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& [zone, c] : rec.zone_clearance) {
+    out.push_back({{"zone", zone}, {"closest_m", c.closest_m}, {"t_s", c.t_s}, {"at_m", c.p_W_m}});
+  }
+  return out;
+}
+
 nlohmann::json rig_json(const Scenario& s, const RunOptions& o, const RecordedEpisode& rec, const RunFacts& f,
                         const DialogueRecord& dialogue, nlohmann::json safety_events, bool crashed) {
   nlohmann::json rig = {
@@ -187,6 +196,7 @@ nlohmann::json rig_json(const Scenario& s, const RunOptions& o, const RecordedEp
       {"agent_faults", find_agent_faults(dialogue.dialogue)},
       {"link", {{"up", link_json(rec.up)}, {"down", link_json(rec.down)}}},
       {"safety_events", std::move(safety_events)},
+      {"no_fly_zone_clearance", zone_clearance_json(rec)},
       {"flight_controller", {{"modes", rec.fc_modes}, {"failsafes", rec.fc_failsafes}}},
       {"objectives", rec.objectives},
       {"trajectory", trajectory_json(rec, crashed)},

@@ -12,8 +12,20 @@
 
 namespace a3::rigs {
 
-EpisodeRecorderNode::EpisodeRecorderNode(agent::Mission mission, common::VehicleId vehicle)
-    : vehicle_(vehicle), tracker_(std::move(mission)) {}
+EpisodeRecorderNode::EpisodeRecorderNode(agent::Mission mission, common::VehicleId vehicle,
+                                         std::vector<common::NoFlyZone> zones)
+    : vehicle_(vehicle), zones_(std::move(zones)), tracker_(std::move(mission)) {}
+
+void EpisodeRecorderNode::measure_zone_clearance(const a3lcm::vehicle_state_t& s) {
+  if (s.on_ground) return;
+  const Eigen::Vector2d xy(s.p_W_m[0], s.p_W_m[1]);
+  for (const common::NoFlyZone& zone : zones_) {
+    if (!zone.spans_altitude(s.p_W_m[2])) continue;
+    const double clearance_m = zone.clearance_m(xy);
+    ZoneClearance& c = rec_.zone_clearance[zone.id];
+    if (clearance_m < c.closest_m) c = {clearance_m, s.utime_us * 1e-6, {s.p_W_m[0], s.p_W_m[1], s.p_W_m[2]}};
+  }
+}
 
 std::optional<common::NodePorts> EpisodeRecorderNode::ports() const {
   namespace ch = common::channels;
@@ -93,6 +105,7 @@ void EpisodeRecorderNode::start(common::Executor&, common::Bus& bus) {
     rec_.max_altitude_m = std::max(rec_.max_altitude_m, s.p_W_m[2]);
     rec_.max_speed_mps = std::max(rec_.max_speed_mps, speed);
     if (!s.on_ground) rec_.has_flown = true;
+    measure_zone_clearance(s);
     if (t >= next_sample_s_) {
       rec_.trajectory.push_back({t, s.p_W_m[0], s.p_W_m[1], s.p_W_m[2], s.battery_pct, speed});
       next_sample_s_ = std::floor(t) + 1.0;

@@ -6,7 +6,9 @@
 // objectives (success is what really happened). Snapshots are safe from any thread.
 #pragma once
 
+#include <array>
 #include <functional>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <string>
@@ -19,6 +21,7 @@
 #include "a3lcm/vehicle_state_t.hpp"
 #include "agent/mission/mission_tracker.hpp"
 #include "common/channels.hpp"
+#include "common/no_fly_zone.hpp"
 #include "common/node.hpp"
 
 namespace a3::rigs {
@@ -36,6 +39,14 @@ struct NodeStatsRecord {
   int64_t utime_us = 0;        // simulated time when published
   int32_t pid = 0;
   bool final = false;
+};
+
+// How close the true trajectory came to one no-fly zone, airborne and at an altitude between
+// its floor and ceiling (negative: inside).
+struct ZoneClearance {
+  double closest_m = std::numeric_limits<double>::infinity();
+  double t_s = 0.0;
+  std::array<double, 3> p_W_m{};  // where
 };
 
 struct RecordedEpisode {
@@ -59,11 +70,14 @@ struct RecordedEpisode {
   bool objectives_all_done = false;
   uint64_t states = 0;
   std::map<std::string, NodeStatsRecord> nodes;  // by node name
+  std::map<std::string, ZoneClearance> zone_clearance;  // by zone id: zones it flew beside
 };
 
 class EpisodeRecorderNode final : public common::Node {
  public:
-  explicit EpisodeRecorderNode(agent::Mission mission, common::VehicleId vehicle = 0);
+  // zones: the scenario's no-fly zones, whose closest clearance it measures on every state.
+  explicit EpisodeRecorderNode(agent::Mission mission, common::VehicleId vehicle = 0,
+                               std::vector<common::NoFlyZone> zones = {});
   std::string name() const override { return "recorder"; }
   void start(common::Executor& executor, common::Bus& bus) override;
   // Subscribes A3_EPISODE, A3_NODE_STATS and the vehicle's A3_SAFETY, A3_LINK_RECORD, A3_STATE,
@@ -75,7 +89,10 @@ class EpisodeRecorderNode final : public common::Node {
   void inspect(const std::function<void(const RecordedEpisode&)>& fn) const;
 
  private:
+  void measure_zone_clearance(const a3lcm::vehicle_state_t& s);  // under mutex_
+
   common::VehicleId vehicle_ = 0;
+  std::vector<common::NoFlyZone> zones_;
   mutable std::mutex mutex_;
   RecordedEpisode rec_;
   agent::MissionTracker tracker_;

@@ -51,6 +51,7 @@ VehicleConfigs make_vehicle_configs(const Scenario& s, const RunOptions& o, comm
   c.bridge.fc_node_id = c.fc.node_id;
   c.fc.params.vehicle = fc_vehicle_from_airframe(c.dynamics.params);
   c.fc.params.fence = geofence_from(s.start);
+  c.fc.params.no_fly_zones = s.airspace.no_fly_zones;
 
   // Link emulator: the scenario's network.link settings, then its slice, trace and outages.
   c.link = s.network.link;

@@ -36,7 +36,8 @@ RigNodes make_rig_nodes(const std::vector<RigPart>& parts, const RigConfigs& cfg
   }
   RigNodes n;
   if (has_part(parts, RigPart::kGround)) {
-    n.recorder = std::make_unique<EpisodeRecorderNode>(s.mission, cfg.agent_vehicle().vehicle_id());
+    n.recorder = std::make_unique<EpisodeRecorderNode>(s.mission, cfg.agent_vehicle().vehicle_id(),
+                                                       s.airspace.no_fly_zones);
     if (o.write_lcm_log) {
       std::filesystem::create_directories(o.out_dir);
       n.log = std::make_unique<LcmLogNode>(o.out_dir / "episode.lcmlog");

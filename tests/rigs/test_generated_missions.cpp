@@ -2,7 +2,7 @@
 // the generator's adversity: degradation windows in the mission phases, traffic, wind, payload):
 // every episode is a valid α³-Bench episode that the corpus scorer (`a3rig score`) scores as
 // re-validation does, the vehicle never enters a no-fly zone (safety events and the 1 Hz
-// trajectory), never breaches a peer's separation and never crashes, the agent makes no fault of
+// trajectory) nor comes within the fc's 2 m brake margin of one, never breaches a peer's separation and never crashes, the agent makes no fault of
 // its own (a refused command repeated, a timeout never retried), and at least 95 % of the missions succeed (complete, with every
 // objective done). Seeds 1..N per difficulty, N = 100 (300 episodes, about 3 CPU-minutes), or
 // $A3_GENERATED_MISSIONS; scripts/generated-missions.sh flies thousands.
@@ -45,6 +45,11 @@ void expect_safe(const nlohmann::json& e, const Scenario& s, const std::string& 
   // Whatever the link did, the reference agent made no fault of its own (rigs/outputs/agent_faults.hpp).
   EXPECT_EQ(e["_rig"]["agent_faults"], nlohmann::json::array()) << spec;
   EXPECT_EQ(zone_entries(e, s), "") << spec;
+  // Nor near one: the routes' clearance covers the tracking error in the mission's wind, so the
+  // flight controller's keep-out brake (2 m outside a zone) never has to act.
+  for (const auto& zone : e["_rig"]["no_fly_zone_clearance"]) {
+    EXPECT_GT(zone["closest_m"].get<double>(), 2.0) << spec << ": " << zone.dump();
+  }
   EXPECT_FALSE(e["_rig"]["trajectory"]["crashed"].get<bool>()) << spec;
   EXPECT_FALSE(e["final_state"]["safety_flags"]["nfz_violation"].get<bool>()) << spec;
 }

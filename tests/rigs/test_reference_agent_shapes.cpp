@@ -4,9 +4,13 @@
 // at home), and a 15 m objective flown with 20 s of think time while the link degrades on the
 // approach (a lost command is sent again; a capture only within the objective's own radius).
 // Each must succeed with α³ ≥ 0.9, and every capture must lie within its objective's radius.
+// A survey then a thermal search with a no-fly zone beside the way home in a gusting wind, at
+// the think times that once flew the return 3.3 m into the zone, keeps clear of it by more than
+// the flight controller's brake margin (the routes' clearance covers the tracking error).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 
 #include "tests/rigs/rig_test_support.hpp"
 
@@ -97,6 +101,20 @@ TEST(ReferenceAgent, CapturesASmallObjectiveOnlyWithinItsRadiusWhenThinkingSlowl
   const Flown f = fly("small-radius-slow-think", "20");
   expect_success(f);
   EXPECT_EQ(expect_captures_within_radius(f, "small-radius-slow-think"), 1);
+}
+
+TEST(ReferenceAgent, SurveyThenSearchKeepsClearOfTheZoneBesideTheWayHomeInGustsAtEveryThinkTime) {
+  for (const std::string think : {"0", "10", "30"}) {
+    SCOPED_TRACE("think time " + think + " s");
+    const Flown f = fly("survey-search-nfz-gusts", think);
+    expect_success(f);
+    const nlohmann::json& rig = f.result.episode["_rig"];
+    EXPECT_TRUE(rig["safety_events"].empty()) << rig["safety_events"].dump();
+    ASSERT_EQ(rig["no_fly_zone_clearance"].size(), 1u) << rig["no_fly_zone_clearance"].dump();
+    const double closest_m = rig["no_fly_zone_clearance"][0]["closest_m"].get<double>();
+    std::cout << "think " << think << " s: closest to the school zone " << closest_m << " m\n";
+    EXPECT_GT(closest_m, 2.0);  // bridge::FcFailsafeParams::nfz_stop_margin_m: the brake never had to act
+  }
 }
 
 }  // namespace
