@@ -21,6 +21,21 @@ nlohmann::json a2a(const std::string& task, const std::string& to, nlohmann::jso
   return {{"type", "a2a"}, {"task", task}, {"to", to}, {"payload", std::move(payload)}};
 }
 
+bool has_traffic(const AgentContext& c) { return c.airspace.contains("traffic") && !c.airspace["traffic"].empty(); }
+
+bool asks_for_separation(const std::vector<nlohmann::json>& actions) {
+  return std::any_of(actions.begin(), actions.end(),
+                     [](const nlohmann::json& a) { return a.value("task", "") == "collision_avoidance"; });
+}
+
+// With other aircraft about, the way home is checked with the swarm as it is flown (after the
+// motion, so the swarm predicts along the new route): an alert in the dialogue's last turn would
+// leave no turn to negotiate.
+void check_way_home_with_swarm(const AgentContext& c, std::vector<nlohmann::json>* actions) {
+  if (!has_traffic(c) || asks_for_separation(*actions)) return;
+  actions->push_back(a2a("collision_avoidance", "uav_swarm_agent", {{"intent", "return home"}, {"request", "yield"}}));
+}
+
 nlohmann::json polygon_json(const common::Polygon2d& poly) {
   nlohmann::json out = nlohmann::json::array();
   for (const auto& p : poly) out.push_back({p.x(), p.y()});
@@ -273,7 +288,7 @@ void ScriptedAgent::plan(const AgentContext& c) {
                                       {"goal", {goal.x(), goal.y()}},
                                       {"z", m.cruise_altitude_m}}));
   }
-  if (c.airspace.contains("traffic") && !c.airspace["traffic"].empty()) {
+  if (has_traffic(c)) {
     preflight_.actions.push_back(a2a("swarm_status_check", "uav_swarm_agent"));
   }
 }
@@ -352,6 +367,7 @@ void ScriptedAgent::add_leg_motion(const AgentContext& c, Choice* choice) {
 
 void ScriptedAgent::add_return(const AgentContext& c, Choice* choice) {
   choice->actions.push_back(mcp("return_to_home"));
+  check_way_home_with_swarm(c, &choice->actions);
   choice->intent += std::string(choice->intent.empty() ? "" : "+") + "return_to_home";
   // Say what is left undone rather than claim the mission done: objectives given up, a capture
   // that failed, and every leg not reached.
@@ -471,8 +487,13 @@ ScriptedAgent::Choice ScriptedAgent::next_choice(const AgentContext& c) {
       return again;
     }
     const bool first_after = !c.dialogue->empty() && c.dialogue->back().intent == "acknowledge_landing";
-    return {first_after ? "confirm_landing" : "status_report",
-            first_after ? "Confirming the landing." : "Reporting status.", {mcp("read_telemetry")}};
+    // Still flying home: ask the swarm about the way home again (the supervisor has not seen it land).
+    Choice report{first_after ? "confirm_landing" : "status_report",
+                  first_after ? "Confirming the landing." : "Reporting status.", {mcp("read_telemetry")}};
+    const bool landed = std::any_of(c.dialogue->begin(), c.dialogue->end(),
+                                    [](const Turn& t) { return t.intent == "acknowledge_landing"; });
+    if (!landed) check_way_home_with_swarm(c, &report.actions);
+    return report;
   }
   if (auto retake = retake_failed_capture(c, agent_turns_left)) return *retake;
   Choice choice;
@@ -536,7 +557,8 @@ AgentDecision ScriptedAgent::decide(const AgentContext& c) {
   }
   Choice choice = next_choice(c);
   // Traffic reported close by the supervisor: negotiate separation first.
-  if (!c.dialogue->empty() && c.dialogue->back().speaker == "user" && c.dialogue->back().intent == "traffic_alert") {
+  if (!c.dialogue->empty() && c.dialogue->back().speaker == "user" && c.dialogue->back().intent == "traffic_alert" &&
+      !asks_for_separation(choice.actions)) {
     choice.actions.insert(choice.actions.begin(), a2a("collision_avoidance", "uav_swarm_agent",
                                                       {{"intent", "hold position for the mission"}, {"request", "yield"}}));
   }

@@ -54,6 +54,26 @@ void expect_safe(const nlohmann::json& e, const Scenario& s, const std::string& 
   EXPECT_FALSE(e["final_state"]["safety_flags"]["nfz_violation"].get<bool>()) << spec;
 }
 
+// The closest any flight came to a no-fly zone, and in which mission.
+struct ClosestZone {
+  double clearance_m = 1e9;
+  std::string where;
+  void add(const nlohmann::json& e, const std::string& spec) {
+    for (const auto& zone : e["_rig"]["no_fly_zone_clearance"]) {
+      if (zone["closest_m"].get<double>() < clearance_m) {
+        clearance_m = zone["closest_m"].get<double>();
+        where = spec + " " + zone["zone"].get<std::string>();
+      }
+    }
+  }
+  std::string text() const {
+    if (where.empty()) return "no flight beside a no-fly zone";
+    char out[64];
+    std::snprintf(out, sizeof out, "closest to a no-fly zone %.2f m", clearance_m);
+    return out + (" (" + where + ")");
+  }
+};
+
 class GeneratedMissions : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(GeneratedMissions, ScriptedAgentFliesThemSafelyAndMostlySucceeds) {
@@ -63,6 +83,7 @@ TEST_P(GeneratedMissions, ScriptedAgentFliesThemSafelyAndMostlySucceeds) {
   std::filesystem::create_directories(corpus);
   std::vector<double> alpha3;
   std::string failed;
+  ClosestZone closest;
   for (int seed = 1; seed <= n; ++seed) {
     const std::string spec = "gen:" + std::to_string(seed) + ":" + GetParam();
     RunOptions o = a3::test::virtual_run(spec, GetParam() + "-" + std::to_string(seed));
@@ -71,6 +92,7 @@ TEST_P(GeneratedMissions, ScriptedAgentFliesThemSafelyAndMostlySucceeds) {
     const a3::test::Scored scored = a3::test::score(r.episode);
     ASSERT_TRUE(scored.valid) << spec << ": " << scored.problems;
     expect_safe(r.episode, s, spec);
+    closest.add(r.episode, spec);
     alpha3.push_back(scored.pillars.alpha3);
     // A mission the agent did not finish (say, the dialogue ended with the vehicle airborne)
     // counts against the success rate; safety and validity hold for every one.
@@ -90,8 +112,8 @@ TEST_P(GeneratedMissions, ScriptedAgentFliesThemSafelyAndMostlySucceeds) {
   EXPECT_NEAR(corpus_scores.models[0].mean, std::accumulate(alpha3.begin(), alpha3.end(), 0.0) / n, 1e-12);
   const int failures = static_cast<int>(std::count(failed.begin(), failed.end(), '\n'));
   const double success_rate = 1.0 - static_cast<double>(failures) / n;
-  std::printf("%s: %d of %d generated missions succeeded (%.1f %%)\n%s", GetParam().c_str(), n - failures, n,
-              100.0 * success_rate, failed.c_str());
+  std::printf("%s: %d of %d generated missions succeeded (%.1f %%); %s\n%s", GetParam().c_str(), n - failures, n,
+              100.0 * success_rate, closest.text().c_str(), failed.c_str());
   EXPECT_GE(success_rate, 0.95) << "missions that failed:\n" << failed;
   std::filesystem::remove_all(out_dir);
 }

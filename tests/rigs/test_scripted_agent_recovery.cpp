@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iostream>
 
 #include "agent/conversation/scripted_agent.hpp"
 #include "rigs/scenario/builtin_scenarios.hpp"
@@ -258,6 +259,35 @@ TEST(ScriptedAgentRecovery, ALostSensorActivationIsSentAgainWithTheSearch) {
   EXPECT_TRUE(has(names, "activate_sensor")) << again.actions.dump();
   EXPECT_TRUE(has(names, "execute_maneuver")) << again.actions.dump();
   EXPECT_NE(again.text.find("activate_sensor timed out"), std::string::npos) << again.text;
+}
+
+// With traffic about, the way home is checked with the swarm in the turn that sends the return
+// (after it, so the swarm predicts along the route home) and in each check until the landing;
+// without traffic, never.
+TEST(ScriptedAgentRecovery, WithTrafficAboutTheWayHomeIsCheckedWithTheSwarmUntilTheLanding) {
+  const Flown traffic = fly("traffic-conflict");
+  const std::size_t home = first_turn_with(traffic.dialogue, "return_to_home");
+  ASSERT_LT(home, traffic.dialogue.size());
+  const std::vector<std::string> names = names_of(traffic.dialogue[home].actions);
+  const auto ret = std::find(names.begin(), names.end(), "return_to_home");
+  const auto ask = std::find(names.begin(), names.end(), "collision_avoidance");
+  EXPECT_TRUE(ask != names.end() && ask > ret) << traffic.dialogue[home].actions.dump();
+  bool landed = false;
+  int checks_after = 0;
+  for (std::size_t i = home + 1; i < traffic.dialogue.size(); ++i) {
+    const agent::Turn& t = traffic.dialogue[i];
+    landed = landed || t.intent == "acknowledge_landing";
+    if (t.speaker != "agent") continue;
+    const bool asks = has(names_of(t.actions), "collision_avoidance");
+    EXPECT_EQ(asks, !landed) << "turn " << t.number << " (" << t.intent << "): " << t.actions.dump();
+    checks_after += asks ? 1 : 0;
+  }
+  std::cout << "traffic-conflict: " << checks_after << " checks with the swarm after the return turn\n";
+
+  const Flown quiet = fly("parcel-delivery");
+  for (const agent::Turn& t : quiet.dialogue) {
+    EXPECT_FALSE(has(names_of(t.actions), "collision_avoidance")) << "turn " << t.number << ": " << t.actions.dump();
+  }
 }
 
 }  // namespace
