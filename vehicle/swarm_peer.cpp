@@ -152,13 +152,20 @@ std::string SwarmPeer::status_of(const SwarmPeerState& peer, double t) const {
 SwarmPeer::YieldPlan SwarmPeer::plan_yield(const TrafficPlan& ours, const TrafficPlan& peer, double now,
                                             double wanted_m) const {
   // Climb away; when the climb alone leaves less than the wanted separation, also hold the
-  // course (climbing in place) a little longer each time, up to max_yield_hold_s.
-  YieldPlan y;
-  for (y.hold_s = 0.0;; y.hold_s += kYieldHoldStep_s) {
-    y.plan = climbed_plan(delayed_plan(peer, now, y.hold_s), now, peer.yield_climb_m, config_.yield_climb_rate_mps);
+  // course (climbing in place) a little longer each time, up to max_yield_hold_s. The first plan
+  // that gives the wanted separation, else the one that gives the most (holding can bring the
+  // peer closer: our vehicle may be flying toward where it would hold).
+  YieldPlan best;
+  best.after.distance_m = -1.0;
+  for (double hold_s = 0.0; hold_s <= config_.max_yield_hold_s + 1e-9; hold_s += kYieldHoldStep_s) {
+    YieldPlan y;
+    y.hold_s = hold_s;
+    y.plan = climbed_plan(delayed_plan(peer, now, hold_s), now, peer.yield_climb_m, config_.yield_climb_rate_mps);
     y.after = closest_approach_running_late(ours, y.plan, now, config_.horizon_s, config_.own_lateness_s);
-    if (y.after.distance_m >= wanted_m || y.hold_s + kYieldHoldStep_s > config_.max_yield_hold_s + 1e-9) return y;
+    if (y.after.distance_m >= wanted_m) return y;
+    if (y.after.distance_m > best.after.distance_m) best = std::move(y);
   }
+  return best;
 }
 
 PeerAnswer SwarmPeer::collision_avoidance(const SelfView& self, const nlohmann::json& payload) {

@@ -28,12 +28,12 @@ bool asks_for_separation(const std::vector<nlohmann::json>& actions) {
                      [](const nlohmann::json& a) { return a.value("task", "") == "collision_avoidance"; });
 }
 
-// With other aircraft about, the way home is checked with the swarm as it is flown (after the
-// motion, so the swarm predicts along the new route): an alert in the dialogue's last turn would
-// leave no turn to negotiate.
-void check_way_home_with_swarm(const AgentContext& c, std::vector<nlohmann::json>* actions) {
+// With other aircraft about, every leg is checked with the swarm as it is sent (after the
+// motion, so the swarm predicts along the new route) rather than only when the supervisor
+// reports traffic close by: by then a conflict may be seconds away, or the dialogue's last turn.
+void check_route_with_swarm(const AgentContext& c, const std::string& intent, std::vector<nlohmann::json>* actions) {
   if (!has_traffic(c) || asks_for_separation(*actions)) return;
-  actions->push_back(a2a("collision_avoidance", "uav_swarm_agent", {{"intent", "return home"}, {"request", "yield"}}));
+  actions->push_back(a2a("collision_avoidance", "uav_swarm_agent", {{"intent", intent}, {"request", "yield"}}));
 }
 
 nlohmann::json polygon_json(const common::Polygon2d& poly) {
@@ -359,6 +359,7 @@ void ScriptedAgent::add_leg_motion(const AgentContext& c, Choice* choice) {
     auto route = is_motion(a) && !leg.is_route ? route_for(c, leg, a) : std::vector<nlohmann::json>{};
     choice->actions.push_back(route.empty() ? a : mcp("navigate_to", {{"waypoints", route}}));
   }
+  check_route_with_swarm(c, "fly to " + leg.objective_id, &choice->actions);
   choice->intent += (choice->intent.empty() ? "" : "+") + leg.intent;
   choice->text += (choice->text.empty() ? "" : " ") + leg.text;
   leg_sent_ = true;
@@ -367,7 +368,7 @@ void ScriptedAgent::add_leg_motion(const AgentContext& c, Choice* choice) {
 
 void ScriptedAgent::add_return(const AgentContext& c, Choice* choice) {
   choice->actions.push_back(mcp("return_to_home"));
-  check_way_home_with_swarm(c, &choice->actions);
+  check_route_with_swarm(c, "return home", &choice->actions);
   choice->intent += std::string(choice->intent.empty() ? "" : "+") + "return_to_home";
   // Say what is left undone rather than claim the mission done: objectives given up, a capture
   // that failed, and every leg not reached.
@@ -492,7 +493,7 @@ ScriptedAgent::Choice ScriptedAgent::next_choice(const AgentContext& c) {
                   first_after ? "Confirming the landing." : "Reporting status.", {mcp("read_telemetry")}};
     const bool landed = std::any_of(c.dialogue->begin(), c.dialogue->end(),
                                     [](const Turn& t) { return t.intent == "acknowledge_landing"; });
-    if (!landed) check_way_home_with_swarm(c, &report.actions);
+    if (!landed) check_route_with_swarm(c, "return home", &report.actions);
     return report;
   }
   if (auto retake = retake_failed_capture(c, agent_turns_left)) return *retake;

@@ -6,7 +6,10 @@
 // Each must succeed with α³ ≥ 0.9, and every capture must lie within its objective's radius.
 // A survey then a thermal search with a no-fly zone beside the way home in a gusting wind, at
 // the think times that once flew the return 3.3 m into the zone, keeps clear of it by more than
-// the flight controller's brake margin (the routes' clearance covers the tracking error).
+// the flight controller's brake margin (the routes' clearance covers the tracking error). A
+// heavy-lift vehicle imaging three points past a polygon zone, with a degradation and a
+// helicopter shuttling past the first, checks each leg with the swarm and never breaches its
+// separation (at 30 s of think time the helicopter's alert came 3.5 s before the conflict).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -26,9 +29,10 @@ struct Flown {
   a3::test::Scored scored;
 };
 
-Flown fly(const std::string& shape, const std::string& think_time = "0") {
+Flown fly(const std::string& shape, const std::string& think_time = "0", int max_turns = 0) {
   RunOptions o = a3::test::virtual_run(shape_file(shape), "reference-" + shape);
   o.think_time = think_time;
+  if (max_turns > 0) o.max_turns = max_turns;
   Flown f{a3::test::run(o), {}};
   f.scored = a3::test::score(f.result.episode);
   std::filesystem::remove_all(o.out_dir);
@@ -114,6 +118,22 @@ TEST(ReferenceAgent, SurveyThenSearchKeepsClearOfTheZoneBesideTheWayHomeInGustsA
     const double closest_m = rig["no_fly_zone_clearance"][0]["closest_m"].get<double>();
     std::cout << "think " << think << " s: closest to the school zone " << closest_m << " m\n";
     EXPECT_GT(closest_m, 2.0);  // bridge::FcFailsafeParams::nfz_stop_margin_m: the brake never had to act
+  }
+}
+
+TEST(ReferenceAgent, ThreeImagesPastAZoneWithAHelicopterAboutKeepSeparationAtEveryThinkTime) {
+  for (const std::string think : {"0", "10", "30"}) {
+    SCOPED_TRACE("think time " + think + " s");
+    // 20 turns: longer than the corpus's 8–12, so the episode is flown and judged but not scored.
+    const Flown f = fly("heavy-lift-three-images-traffic", think, 20);
+    EXPECT_EQ(f.result.status, "completed");
+    EXPECT_TRUE(f.result.episode.value("success", false)) << f.result.episode["_rig"]["objectives"].dump();
+    const nlohmann::json& rig = f.result.episode["_rig"];
+    for (const auto& event : rig["safety_events"]) {
+      EXPECT_NE(event.value("kind", ""), "separation_breach") << event.dump();
+      EXPECT_NE(event.value("kind", ""), "nfz_intrusion") << event.dump();
+    }
+    EXPECT_EQ(rig["agent_faults"], nlohmann::json::array());
   }
 }
 

@@ -1,6 +1,7 @@
 // The reference agent's recovery (issue 35): a capture the link lost, or one the sensor refused,
 // is not claimed (the agent flies back to the point and takes it again); a take-off the link lost
-// is sent again; a sensor activation lost before a survey is sent again with the survey. The
+// is sent again; a sensor activation lost before a survey is sent again with the survey; with
+// traffic about, every leg and the way home are checked with the swarm. The
 // dialogue of a flown built-in scenario is shown to a fresh scripted agent turn by turn, with the
 // answer that matters replaced, and the agent's next decision is read; and parcel-delivery is
 // flown whole through a link that loses every message while the launch command crosses it.
@@ -261,28 +262,36 @@ TEST(ScriptedAgentRecovery, ALostSensorActivationIsSentAgainWithTheSearch) {
   EXPECT_NE(again.text.find("activate_sensor timed out"), std::string::npos) << again.text;
 }
 
-// With traffic about, the way home is checked with the swarm in the turn that sends the return
-// (after it, so the swarm predicts along the route home) and in each check until the landing;
-// without traffic, never.
-TEST(ScriptedAgentRecovery, WithTrafficAboutTheWayHomeIsCheckedWithTheSwarmUntilTheLanding) {
+// With traffic about, every leg is checked with the swarm in the turn that sends it (after the
+// motion, so the swarm predicts along the new route), the way home too, and each check until the
+// landing; without traffic, never.
+TEST(ScriptedAgentRecovery, WithTrafficAboutEveryLegAndTheWayHomeAreCheckedWithTheSwarm) {
+  const std::vector<std::string> motions = {"navigate_to", "set_waypoint", "execute_maneuver", "return_to_home"};
   const Flown traffic = fly("traffic-conflict");
   const std::size_t home = first_turn_with(traffic.dialogue, "return_to_home");
   ASSERT_LT(home, traffic.dialogue.size());
-  const std::vector<std::string> names = names_of(traffic.dialogue[home].actions);
-  const auto ret = std::find(names.begin(), names.end(), "return_to_home");
-  const auto ask = std::find(names.begin(), names.end(), "collision_avoidance");
-  EXPECT_TRUE(ask != names.end() && ask > ret) << traffic.dialogue[home].actions.dump();
   bool landed = false;
-  int checks_after = 0;
-  for (std::size_t i = home + 1; i < traffic.dialogue.size(); ++i) {
+  int legs = 0, checks_after_return = 0;
+  for (std::size_t i = 0; i < traffic.dialogue.size(); ++i) {
     const agent::Turn& t = traffic.dialogue[i];
     landed = landed || t.intent == "acknowledge_landing";
     if (t.speaker != "agent") continue;
-    const bool asks = has(names_of(t.actions), "collision_avoidance");
-    EXPECT_EQ(asks, !landed) << "turn " << t.number << " (" << t.intent << "): " << t.actions.dump();
-    checks_after += asks ? 1 : 0;
+    const std::vector<std::string> names = names_of(t.actions);
+    const auto ask = std::find(names.begin(), names.end(), "collision_avoidance");
+    for (const std::string& motion : motions) {
+      const auto sent = std::find(names.begin(), names.end(), motion);
+      if (sent == names.end()) continue;
+      ++legs;
+      EXPECT_TRUE(ask != names.end() && ask > sent) << "turn " << t.number << ": " << t.actions.dump();
+    }
+    if (i > home) {
+      EXPECT_EQ(ask != names.end(), !landed) << "turn " << t.number << " (" << t.intent << "): " << t.actions.dump();
+      checks_after_return += ask != names.end() ? 1 : 0;
+    }
   }
-  std::cout << "traffic-conflict: " << checks_after << " checks with the swarm after the return turn\n";
+  EXPECT_GE(legs, 2);
+  std::cout << "traffic-conflict: " << legs << " legs checked, " << checks_after_return
+            << " checks with the swarm after the return turn\n";
 
   const Flown quiet = fly("parcel-delivery");
   for (const agent::Turn& t : quiet.dialogue) {

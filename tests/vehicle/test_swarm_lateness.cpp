@@ -1,7 +1,8 @@
 // The swarm's conflict prediction allows our vehicle to run late against its predicted path
 // (stops at route waypoints, wind): the closest approach is the nearest over every lateness up
 // to own_lateness_s, and the vehicle waits where it is meanwhile. A yielding peer whose climb
-// alone is not enough also holds its course until it would pass far enough away.
+// alone is not enough also holds its course until it would pass far enough away, and where no
+// plan is enough takes the one that leaves the most room.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -86,6 +87,30 @@ TEST(SwarmYield, WithoutHoldingTheClimbAloneLeavesABreachAndSaysGiveWay) {
   const nlohmann::json& peer = answer["peers"][0];
   EXPECT_EQ(peer["hold_s"].get<double>(), 0.0);
   EXPECT_LT(peer["predicted_separation_after_m"].get<double>(), 30.0) << answer.dump();
+  EXPECT_EQ(answer["recommendation"], "give_way: hold or change altitude");
+}
+
+// A slow peer just past our path, moving off it at 2 m/s: holding its course would keep it
+// in front of us, so when no plan gives the wanted separation it yields the way that gives the
+// most (the climb alone), never the longest hold.
+TEST(SwarmYield, WhenNoPlanIsEnoughThePeerYieldsTheWayThatLeavesTheMostRoom) {
+  TrafficPlan peer;
+  peer.id = "heli";
+  peer.path = {{0.0, Eigen::Vector3d(60, 5, 40)}, {100.0, Eigen::Vector3d(60, 205, 40)}};
+  peer.min_separation_m = 30.0;
+  peer.yield_climb_m = 40.0;
+  SwarmPeer swarm({peer}, SwarmConfig{});
+  SelfView self;
+  self.known = true;
+  self.p_W_m = Eigen::Vector3d(0, 0, 40);
+  self.predicted = ours();
+  self.basis = TrackBasis::kRoute;
+  const nlohmann::json answer = swarm.collision_avoidance(self, {{"request", "yield"}}).payload;
+  const nlohmann::json& entry = answer["peers"][0];
+  ASSERT_EQ(entry["action"], "yielding") << answer.dump();
+  EXPECT_EQ(entry["hold_s"].get<double>(), 0.0) << answer.dump();
+  // Climbing while it flies on: about 17 m along and 15 m up when we pass; holding: 5 m and 15 m.
+  EXPECT_GT(entry["predicted_separation_after_m"].get<double>(), 20.0) << answer.dump();
   EXPECT_EQ(answer["recommendation"], "give_way: hold or change altitude");
 }
 
