@@ -32,6 +32,11 @@ double EnergyModel::leg_time_s(const Eigen::Vector3d& a, const Eigen::Vector3d& 
   return horizontal_time_s(a, b, speed_mps) + (dz_m > 0.0 ? dz_m / climb_speed_mps : -dz_m / descent_speed_mps);
 }
 
+double EnergyModel::flown_leg_time_s(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double speed_mps) const {
+  const double dz_m = b.z() - a.z();
+  return std::max(horizontal_time_s(a, b, speed_mps), dz_m > 0.0 ? dz_m / climb_speed_mps : -dz_m / descent_speed_mps);
+}
+
 double EnergyModel::leg_percent(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double speed_mps) const {
   const double dz_m = b.z() - a.z();
   const double vertical_s = dz_m > 0.0 ? dz_m / climb_speed_mps : -dz_m / descent_speed_mps;

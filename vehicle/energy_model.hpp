@@ -46,7 +46,11 @@ struct EnergyModel {
   double horizontal_time_s(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double speed_mps) const;
   // Time and battery share of the straight leg a → b at speed_mps (horizontal, commanded),
   // with the margin factor applied to the share.
+  // The time is the climb (or descent) then the horizontal part: an upper bound for budgets.
   double leg_time_s(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double speed_mps) const;
+  // The time as the fc flies a go-to, climbing (or descending) while it flies: the longer of the
+  // two parts. What the swarm's conflict prediction expects; leg_time_s for budgets.
+  double flown_leg_time_s(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double speed_mps) const;
   double leg_percent(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double speed_mps) const;
   // Through every waypoint in order, settling at each.
   double route_time_s(const Eigen::Vector3d& start, const std::vector<Eigen::Vector3d>& waypoints,

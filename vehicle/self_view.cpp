@@ -1,7 +1,7 @@
 // What the simulated peers know of our vehicle: its true position and velocity (A3_STATE, else
 // the fc's estimate) and the path it is about to fly, predicted from what it was told to do:
 // the onboard route's remaining waypoints at the ground speed it makes good at the route's
-// speed in the estimated wind (EnergyModel::leg_time_s), the take-off climb, the
+// speed in the estimated wind, climbing while it flies (EnergyModel::flown_leg_time_s), the take-off climb, the
 // fc's return home or landing; holding still in HOLD or on the ground; straight on at its
 // velocity when the fc flies somewhere the tool server did not send it.
 #include <algorithm>
@@ -55,7 +55,9 @@ SelfView ToolServerNode::self_view() const {
   double t = view.now_s;
   Eigen::Vector3d from = view.p_W_m;
   for (const auto& target : targets) {
-    const double dt = gate_.energy().leg_time_s(from, target, view.commanded_speed_mps);  // at the ground speed made good
+    // At the ground speed made good, climbing while flying as the fc does (a sum of climb and
+    // cruise would predict the vehicle later than it comes, outside the lateness allowed).
+    const double dt = gate_.energy().flown_leg_time_s(from, target, view.commanded_speed_mps);
     if (!std::isfinite(dt)) break;  // the wind holds the vehicle where it is
     if (dt <= 1e-6) continue;
     t += dt;
