@@ -137,5 +137,26 @@ TEST(ReferenceAgent, ThreeImagesPastAZoneWithAHelicopterAboutKeepSeparationAtEve
   }
 }
 
+// traffic-conflict at the think times where every seed of the 20-seed sweep breached the
+// patrol's separation before the swarm predicted our vehicle climbing while it flies (it
+// predicted the first leg 30 s late, beyond the lateness it allows): no breach now.
+TEST(ReferenceAgent, TrafficConflictKeepsSeparationAtTheThinkTimesThatBreachedIt) {
+  for (const std::string think : {"10", "120"}) {
+    for (uint64_t seed = 1; seed <= 5; ++seed) {
+      SCOPED_TRACE("think time " + think + " s, seed " + std::to_string(seed));
+      RunOptions o = a3::test::virtual_run("traffic-conflict", "reference-traffic-" + think + "-" + std::to_string(seed));
+      o.think_time = think;
+      o.seed = seed;
+      const RunResult r = a3::test::run(o);
+      std::filesystem::remove_all(o.out_dir);
+      EXPECT_EQ(r.status, "completed");
+      EXPECT_TRUE(r.episode.value("success", false));
+      for (const auto& event : r.episode["_rig"]["safety_events"]) {
+        EXPECT_NE(event.value("kind", ""), "separation_breach") << event.dump();
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace a3::rigs
