@@ -28,12 +28,17 @@ bool asks_for_separation(const std::vector<nlohmann::json>& actions) {
                      [](const nlohmann::json& a) { return a.value("task", "") == "collision_avoidance"; });
 }
 
-// With other aircraft about, every leg is checked with the swarm as it is sent (after the
-// motion, so the swarm predicts along the new route) rather than only when the supervisor
-// reports traffic close by: by then a conflict may be seconds away, or the dialogue's last turn.
-void check_route_with_swarm(const AgentContext& c, const std::string& intent, std::vector<nlohmann::json>* actions) {
-  if (!has_traffic(c) || asks_for_separation(*actions)) return;
-  actions->push_back(a2a("collision_avoidance", "uav_swarm_agent", {{"intent", intent}, {"request", "yield"}}));
+bool landed(const AgentContext& c) {
+  return std::any_of(c.dialogue->begin(), c.dialogue->end(), [](const Turn& t) { return t.intent == "acknowledge_landing"; });
+}
+
+// With other aircraft about, every turn in the air checks the way ahead with the swarm (after
+// any motion, so the swarm predicts along the new route; holding too, as a peer may come back
+// past) rather than only when the supervisor reports traffic close by: by then a conflict may
+// be seconds away, or the dialogue's last turn.
+void check_way_ahead_with_swarm(const AgentContext& c, std::vector<nlohmann::json>* actions) {
+  if (!has_traffic(c) || landed(c) || asks_for_separation(*actions)) return;
+  actions->push_back(a2a("collision_avoidance", "uav_swarm_agent", {{"intent", "the way ahead"}, {"request", "yield"}}));
 }
 
 nlohmann::json polygon_json(const common::Polygon2d& poly) {
@@ -359,7 +364,6 @@ void ScriptedAgent::add_leg_motion(const AgentContext& c, Choice* choice) {
     auto route = is_motion(a) && !leg.is_route ? route_for(c, leg, a) : std::vector<nlohmann::json>{};
     choice->actions.push_back(route.empty() ? a : mcp("navigate_to", {{"waypoints", route}}));
   }
-  check_route_with_swarm(c, "fly to " + leg.objective_id, &choice->actions);
   choice->intent += (choice->intent.empty() ? "" : "+") + leg.intent;
   choice->text += (choice->text.empty() ? "" : " ") + leg.text;
   leg_sent_ = true;
@@ -368,7 +372,6 @@ void ScriptedAgent::add_leg_motion(const AgentContext& c, Choice* choice) {
 
 void ScriptedAgent::add_return(const AgentContext& c, Choice* choice) {
   choice->actions.push_back(mcp("return_to_home"));
-  check_route_with_swarm(c, "return home", &choice->actions);
   choice->intent += std::string(choice->intent.empty() ? "" : "+") + "return_to_home";
   // Say what is left undone rather than claim the mission done: objectives given up, a capture
   // that failed, and every leg not reached.
@@ -488,13 +491,8 @@ ScriptedAgent::Choice ScriptedAgent::next_choice(const AgentContext& c) {
       return again;
     }
     const bool first_after = !c.dialogue->empty() && c.dialogue->back().intent == "acknowledge_landing";
-    // Still flying home: ask the swarm about the way home again (the supervisor has not seen it land).
-    Choice report{first_after ? "confirm_landing" : "status_report",
-                  first_after ? "Confirming the landing." : "Reporting status.", {mcp("read_telemetry")}};
-    const bool landed = std::any_of(c.dialogue->begin(), c.dialogue->end(),
-                                    [](const Turn& t) { return t.intent == "acknowledge_landing"; });
-    if (!landed) check_route_with_swarm(c, "return home", &report.actions);
-    return report;
+    return {first_after ? "confirm_landing" : "status_report",
+            first_after ? "Confirming the landing." : "Reporting status.", {mcp("read_telemetry")}};
   }
   if (auto retake = retake_failed_capture(c, agent_turns_left)) return *retake;
   Choice choice;
@@ -557,6 +555,7 @@ AgentDecision ScriptedAgent::decide(const AgentContext& c) {
     planned_ = true;
   }
   Choice choice = next_choice(c);
+  if (launched_) check_way_ahead_with_swarm(c, &choice.actions);
   // Traffic reported close by the supervisor: negotiate separation first.
   if (!c.dialogue->empty() && c.dialogue->back().speaker == "user" && c.dialogue->back().intent == "traffic_alert" &&
       !asks_for_separation(choice.actions)) {

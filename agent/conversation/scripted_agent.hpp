@@ -21,10 +21,9 @@
 // It adapts every turn to the network: on a hard link it asks for URLLC and keeps images on
 // board until the link is good again, then hands them over. When the supervisor reports
 // traffic close by, it asks the swarm for separation (A2A collision_avoidance) first; with
-// other aircraft about, it also asks with every leg it sends (after the motion, so the swarm
-// predicts along the new route), with the return and with every check until the landing, so a
-// conflict is negotiated before the supervisor's alert, which may come seconds before it or in
-// the dialogue's last turn.
+// other aircraft about, it also asks in every turn from the launch to the landing (after any
+// motion, so the swarm predicts along the new route), so a conflict is negotiated before the
+// supervisor's alert, which may come seconds before it or in the dialogue's last turn.
 // Its state is a function of the dialogue it is shown, so replaying the dialogue rebuilds it.
 #pragma once
 

@@ -8,8 +8,9 @@
 // the think times that once flew the return 3.3 m into the zone, keeps clear of it by more than
 // the flight controller's brake margin (the routes' clearance covers the tracking error). A
 // heavy-lift vehicle imaging three points past a polygon zone, with a degradation and a
-// helicopter shuttling past the first, checks each leg with the swarm and never breaches its
-// separation (at 30 s of think time the helicopter's alert came 3.5 s before the conflict).
+// helicopter shuttling past the first, checks the way ahead with the swarm in every turn and never
+// breaches its separation (at 30 s of think time the helicopter's alert came 3.5 s before the
+// conflict).
 #include <gtest/gtest.h>
 
 #include <cmath>

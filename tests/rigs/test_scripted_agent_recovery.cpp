@@ -1,7 +1,7 @@
 // The reference agent's recovery (issue 35): a capture the link lost, or one the sensor refused,
 // is not claimed (the agent flies back to the point and takes it again); a take-off the link lost
 // is sent again; a sensor activation lost before a survey is sent again with the survey; with
-// traffic about, every leg and the way home are checked with the swarm. The
+// traffic about, every turn in the air checks the way ahead with the swarm. The
 // dialogue of a flown built-in scenario is shown to a fresh scripted agent turn by turn, with the
 // answer that matters replaced, and the agent's next decision is read; and parcel-delivery is
 // flown whole through a link that loses every message while the launch command crosses it.
@@ -262,36 +262,34 @@ TEST(ScriptedAgentRecovery, ALostSensorActivationIsSentAgainWithTheSearch) {
   EXPECT_NE(again.text.find("activate_sensor timed out"), std::string::npos) << again.text;
 }
 
-// With traffic about, every leg is checked with the swarm in the turn that sends it (after the
-// motion, so the swarm predicts along the new route), the way home too, and each check until the
-// landing; without traffic, never.
-TEST(ScriptedAgentRecovery, WithTrafficAboutEveryLegAndTheWayHomeAreCheckedWithTheSwarm) {
-  const std::vector<std::string> motions = {"navigate_to", "set_waypoint", "execute_maneuver", "return_to_home"};
+// With traffic about, every turn from the launch to the landing checks the way ahead with the
+// swarm (after the motion where it sends one, so the swarm predicts along the new route); without
+// traffic, never.
+TEST(ScriptedAgentRecovery, WithTrafficAboutEveryTurnInTheAirChecksTheWayAheadWithTheSwarm) {
+  const std::vector<std::string> motions = {"takeoff", "navigate_to", "set_waypoint", "execute_maneuver",
+                                            "return_to_home"};
   const Flown traffic = fly("traffic-conflict");
-  const std::size_t home = first_turn_with(traffic.dialogue, "return_to_home");
-  ASSERT_LT(home, traffic.dialogue.size());
+  const std::size_t launch = first_turn_with(traffic.dialogue, "takeoff");
+  ASSERT_LT(launch, traffic.dialogue.size());
   bool landed = false;
-  int legs = 0, checks_after_return = 0;
-  for (std::size_t i = 0; i < traffic.dialogue.size(); ++i) {
+  int checks = 0;
+  for (std::size_t i = launch; i < traffic.dialogue.size(); ++i) {
     const agent::Turn& t = traffic.dialogue[i];
     landed = landed || t.intent == "acknowledge_landing";
     if (t.speaker != "agent") continue;
     const std::vector<std::string> names = names_of(t.actions);
     const auto ask = std::find(names.begin(), names.end(), "collision_avoidance");
+    EXPECT_EQ(ask != names.end(), !landed) << "turn " << t.number << " (" << t.intent << "): " << t.actions.dump();
     for (const std::string& motion : motions) {
       const auto sent = std::find(names.begin(), names.end(), motion);
-      if (sent == names.end()) continue;
-      ++legs;
-      EXPECT_TRUE(ask != names.end() && ask > sent) << "turn " << t.number << ": " << t.actions.dump();
+      if (sent != names.end()) {
+        EXPECT_TRUE(ask > sent) << "turn " << t.number << ": " << t.actions.dump();
+      }
     }
-    if (i > home) {
-      EXPECT_EQ(ask != names.end(), !landed) << "turn " << t.number << " (" << t.intent << "): " << t.actions.dump();
-      checks_after_return += ask != names.end() ? 1 : 0;
-    }
+    checks += ask != names.end() ? 1 : 0;
   }
-  EXPECT_GE(legs, 2);
-  std::cout << "traffic-conflict: " << legs << " legs checked, " << checks_after_return
-            << " checks with the swarm after the return turn\n";
+  EXPECT_GE(checks, 3);
+  std::cout << "traffic-conflict: " << checks << " turns in the air checked with the swarm\n";
 
   const Flown quiet = fly("parcel-delivery");
   for (const agent::Turn& t : quiet.dialogue) {
