@@ -208,7 +208,9 @@ RunResult run_virtual(const Scenario& s, const RunOptions& o, const RigConfigs& 
         if (r.last_state.crashed && crash_s < 0.0) crash_s = t;
         status = end_reason(r, done, t, dialogue_end_s, crash_s, s.mission.time_limit_s);
       });
-      if (status.empty() && stop != nullptr && stop->load()) status = "interrupted";
+      // A stop (Ctrl-C, an MCP client gone) wins over what it caused: a dialogue it cut short
+      // must not read as the mission's end.
+      if (stop != nullptr && stop->load()) status = "interrupted";
     }
   } catch (const std::exception& e) {
     status = std::string("node_failed: ") + e.what();
@@ -322,8 +324,8 @@ RunResult run_real(const Scenario& s, const RunOptions& o, const RigConfigs& cfg
     const bool done = n.conversation->finished();
     if (done && dialogue_end_s < 0.0) dialogue_end_s = mission_s;
     if (r.last_state.crashed && crash_s < 0.0) crash_s = mission_s;
+    if (status.empty() && stop != nullptr && stop->load()) status = "interrupted";  // before what the stop caused
     if (status.empty()) status = end_reason(r, done, mission_s, dialogue_end_s, crash_s, s.mission.time_limit_s);
-    if (status.empty() && stop != nullptr && stop->load()) status = "interrupted";
     if (progress && SteadyClock::now() - last_line > std::chrono::seconds(10)) {
       last_line = SteadyClock::now();
       progress(status_line(mission_s, wall_s, r));

@@ -64,7 +64,8 @@ TEST(RealTimeRig, TheConflictMissionEndsAsInVirtualTimeWithAQuickAgent) {
 
 TEST(RealTimeRig, TheConflictMissionEndsAsInVirtualTimeWithASlowAgent) {
   A3_REQUIRE_MULTICAST();
-  // Think 60 s: the agent misses the conflict; the breach is measured in both runtimes.
+  // Think 60 s: turns a minute apart; the swarm asked in every turn in the air yields, the same
+  // way in both runtimes.
   expect_same_outcome("traffic-conflict", "60", 8.0);
 }
 
