@@ -27,19 +27,21 @@ double EnergyModel::horizontal_time_s(const Eigen::Vector3d& a, const Eigen::Vec
   return (b.head<2>() - a.head<2>()).norm() / speed_mps;
 }
 
-double EnergyModel::leg_time_s(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double speed_mps) const {
+double EnergyModel::vertical_time_s(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const {
   const double dz_m = b.z() - a.z();
-  return horizontal_time_s(a, b, speed_mps) + (dz_m > 0.0 ? dz_m / climb_speed_mps : -dz_m / descent_speed_mps);
+  return dz_m > 0.0 ? dz_m / climb_speed_mps : -dz_m / descent_speed_mps;
+}
+
+double EnergyModel::leg_time_s(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double speed_mps) const {
+  return horizontal_time_s(a, b, speed_mps) + vertical_time_s(a, b);
 }
 
 double EnergyModel::flown_leg_time_s(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double speed_mps) const {
-  const double dz_m = b.z() - a.z();
-  return std::max(horizontal_time_s(a, b, speed_mps), dz_m > 0.0 ? dz_m / climb_speed_mps : -dz_m / descent_speed_mps);
+  return std::max(horizontal_time_s(a, b, speed_mps), vertical_time_s(a, b));
 }
 
 double EnergyModel::leg_percent(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double speed_mps) const {
-  const double dz_m = b.z() - a.z();
-  const double vertical_s = dz_m > 0.0 ? dz_m / climb_speed_mps : -dz_m / descent_speed_mps;
+  const double vertical_s = vertical_time_s(a, b);
   const double horizontal_s = horizontal_time_s(a, b, speed_mps);
   return margin_factor * percent_per_s() * (cruise_power_factor * horizontal_s + vertical_s);
 }

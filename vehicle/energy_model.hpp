@@ -44,6 +44,8 @@ struct EnergyModel {
   // Time of the horizontal part of a → b flown at speed_mps (commanded); infinity when the
   // wind does not let the vehicle make good that course.
   double horizontal_time_s(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double speed_mps) const;
+  // Time of the vertical part of a → b at the climb or descent speed.
+  double vertical_time_s(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const;
   // Time and battery share of the straight leg a → b at speed_mps (horizontal, commanded),
   // with the margin factor applied to the share.
   // The time is the climb (or descent) then the horizontal part: an upper bound for budgets.
